@@ -1,0 +1,87 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <pc/io/read.h>
+#include <pc/io/sink.h>
+
+namespace pc::cli {
+
+inline constexpr int kOk = 0;       ///< success
+inline constexpr int kFailure = 1;  ///< bad data, I/O, algorithm failure
+inline constexpr int kUsage = 2;    ///< unknown option, bad value, validate() said no
+
+/// What a tool writes to its output: a cloud (PCD or PLY) or a text report.
+enum class Output { kCloud, kText };
+
+/// The standard streams of one run, as chosen by -i/-o. Created by Tool::run.
+class Streams {
+public:
+    /// Reads the whole input (stdin by default). Reader notes are printed with -v.
+    [[nodiscard]] io::Blob read();
+    /// Writes a cloud: PCD (or PLY when `--to ply` or `-o x.ply`), atomically for -o FILE.
+    void write(const io::Blob& blob);
+    /// Writes a text report, atomically for -o FILE.
+    void write_text(std::string_view text);
+    /// Prints `<tool>: <message>` on stderr when -v was given.
+    void note(const std::string& message) const;
+    [[nodiscard]] bool verbose() const { return verbose_; }
+    [[nodiscard]] const std::string& input_name() const { return input_name_; }
+    /// The format the last read() recognised ("pcd binary", "ply ascii", ...).
+    [[nodiscard]] const std::string& input_format() const { return input_format_; }
+
+private:
+    friend class Tool;
+    void write_bytes(const std::function<void(io::ByteSink&)>& producer);
+
+    std::string tool_;
+    std::string input_ = "-", output_ = "-", input_name_;
+    std::string encoding_ = "binary", container_ = "auto", input_format_;
+    std::uint64_t max_input_bytes_ = io::kDefaultMaxInputBytes;
+    bool verbose_ = false, quiet_ = false, written_ = false;
+};
+
+/// Command-line front end shared by every tool: option binding with generated --help, the common
+/// options (-i -o -v -q --format --version), exit codes and error lines. See docs/architecture.md.
+class Tool {
+public:
+    Tool(std::string name, std::string summary, Output output = Output::kCloud);
+    ~Tool();
+
+    // Bind `--name` to a Params field. The default shown in --help is the field's current value.
+    void option(const std::string& name, double* field, const std::string& help);
+    void option(const std::string& name, float* field, const std::string& help);
+    void option(const std::string& name, int* field, const std::string& help);
+    void option(const std::string& name, std::uint32_t* field, const std::string& help);
+    void option(const std::string& name, std::uint64_t* field, const std::string& help);
+    void option(const std::string& name, std::string* field, const std::string& help);
+    /// A comma-separated triple such as `--min -1,-1,0`.
+    void option(const std::string& name, std::array<double, 3>* field, const std::string& help);
+    /// A switch without a value.
+    void flag(const std::string& name, bool* field, const std::string& help);
+    /// An option whose text is parsed by `parse` (which throws pc::InvalidArgument on bad text).
+    void option(const std::string& name,
+                const std::string& default_text,
+                std::function<void(const std::string&)> parse,
+                const std::string& help);
+    /// `--preset NAME`: `apply` runs before every explicitly given option, so flags override it.
+    void presets(const std::vector<std::string>& names,
+                 std::function<void(const std::string&)> apply);
+    /// Extra text printed at the end of --help.
+    void epilog(const std::string& text);
+
+    /// Parses argv, runs `body` and maps every outcome to an exit code and at most one stderr line.
+    int run(int argc, char** argv, const std::function<void(Streams&)>& body);
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace pc::cli

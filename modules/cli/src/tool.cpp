@@ -1,0 +1,378 @@
+#include <pc/cli/tool.h>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <csignal>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#include <boost/program_options.hpp>
+#include <pcl/console/print.h>
+
+#include <pc/core/error.h>
+#include <pc/io/pcd.h>
+#include <pc/io/ply.h>
+
+
+namespace po = boost::program_options;
+
+namespace pc::cli {
+
+namespace {
+
+struct Binding {
+    std::string name;
+    bool is_flag = false;
+    std::function<void(const std::string&)> assign;  // called only for options given explicitly
+};
+
+template <class T>
+T parse_number(const std::string& option, const std::string& text) {
+    T v{};
+    const char* b = text.data();
+    const char* e = b + text.size();
+    if (b != e && *b == '+') {
+        ++b;
+    }
+    const auto r = std::from_chars(b, e, v);
+    if (b == e || r.ec != std::errc{} || r.ptr != e) {
+        throw InvalidArgument("--" + option + ": '" + text + "' is not a valid " +
+                              (std::is_floating_point_v<T> ? "number" : "whole number") +
+                              (std::is_unsigned_v<T> ? " >= 0" : ""));
+    }
+    return v;
+}
+
+template <class T>
+std::string number_text(T v) {
+    if constexpr (std::is_floating_point_v<T>) {
+        return format_number(static_cast<double>(v));
+    } else {
+        return std::to_string(v);
+    }
+}
+
+bool ends_with(const std::string& s, std::string_view suffix) {
+    if (s.size() < suffix.size()) {
+        return false;
+    }
+    std::string tail = s.substr(s.size() - suffix.size());
+    for (char& c : tail) {
+        c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    }
+    return tail == suffix;
+}
+
+/// A file written next to its destination and renamed into place only after success.
+class AtomicFile {
+public:
+    explicit AtomicFile(const std::string& path) : path_(path), tmp_(path + ".tmp.XXXXXX") {
+        fd_ = ::mkstemp(tmp_.data());
+        if (fd_ < 0) {
+            throw IoError(path + ": cannot create output: " + std::strerror(errno));
+        }
+        const mode_t mask = ::umask(0);
+        ::umask(mask);
+        (void)::fchmod(fd_, 0666 & ~mask);
+    }
+    AtomicFile(const AtomicFile&) = delete;
+    AtomicFile& operator=(const AtomicFile&) = delete;
+    ~AtomicFile() {
+        if (fd_ >= 0) {
+            ::close(fd_);
+            ::unlink(tmp_.c_str());
+        }
+    }
+    [[nodiscard]] int fd() const { return fd_; }
+    void commit() {
+        if (::fsync(fd_) != 0 || ::close(fd_) != 0) {
+            fd_ = -1;
+            ::unlink(tmp_.c_str());
+            throw IoError(path_ + ": write failed: " + std::strerror(errno));
+        }
+        fd_ = -1;
+        if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+            const int err = errno;
+            ::unlink(tmp_.c_str());
+            throw IoError(path_ + ": cannot rename into place: " + std::strerror(err));
+        }
+    }
+
+private:
+    std::string path_, tmp_;
+    int fd_ = -1;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+io::Blob Streams::read() {
+    io::ReadResult r = io::read_cloud(input_, max_input_bytes_);
+    input_format_ = r.format;
+    for (const auto& n : r.notes) {
+        note(input_name_ + ": " + n);
+    }
+    note(input_name_ + ": " + std::to_string(r.blob.size()) + " points, " + r.format);
+    return std::move(r.blob);
+}
+
+void Streams::note(const std::string& message) const {
+    if (verbose_ && !quiet_) {
+        std::cerr << tool_ << ": " << message << '\n';
+    }
+}
+
+void Streams::write_bytes(const std::function<void(io::ByteSink&)>& producer) {
+    if (written_) {
+        throw Error("internal: a tool wrote its output twice");
+    }
+    written_ = true;
+    if (output_ == "-") {
+        io::FdSink sink(1, "<stdout>");
+        producer(sink);
+        return;
+    }
+    AtomicFile file(output_);
+    io::FdSink sink(file.fd(), output_);
+    producer(sink);
+    file.commit();
+}
+
+void Streams::write(const io::Blob& blob) {
+    const bool ply = container_ == "ply" || (container_ == "auto" && ends_with(output_, ".ply"));
+    if (ply && encoding_ == "compressed") {
+        throw InvalidArgument("--format compressed exists for PCD only, not PLY");
+    }
+    write_bytes([&](io::ByteSink& sink) {
+        if (ply) {
+            io::write_ply(blob, encoding_ != "ascii", sink);
+        } else {
+            const io::PcdEncoding e = encoding_ == "ascii"    ? io::PcdEncoding::kAscii
+                                      : encoding_ == "binary" ? io::PcdEncoding::kBinary
+                                                              : io::PcdEncoding::kBinaryCompressed;
+            io::write_pcd(blob, e, sink);
+        }
+    });
+}
+
+void Streams::write_text(std::string_view text) {
+    write_bytes([&](io::ByteSink& sink) { sink.write(text.data(), text.size()); });
+}
+
+// ---------------------------------------------------------------------------------------------
+
+struct Tool::Impl {
+    std::string name, summary, epilog;
+    Output output;
+    po::options_description own{"Options"};
+    std::vector<Binding> bindings;
+    std::function<void(const std::string&)> apply_preset;
+    std::string preset;
+};
+
+Tool::Tool(std::string name, std::string summary, Output output) : impl_(std::make_unique<Impl>()) {
+    impl_->name = std::move(name);
+    impl_->summary = std::move(summary);
+    impl_->output = output;
+}
+
+Tool::~Tool() = default;
+
+void Tool::option(const std::string& name,
+                  const std::string& default_text,
+                  std::function<void(const std::string&)> parse,
+                  const std::string& help) {
+    impl_->own.add_options()(name.c_str(),
+                             po::value<std::string>()->default_value(default_text, default_text),
+                             help.c_str());
+    impl_->bindings.push_back({name, false, std::move(parse)});
+}
+
+namespace {
+template <class T>
+void bind_number(Tool& tool, const std::string& name, T* field, const std::string& help) {
+    tool.option(name, number_text(*field),
+                [field, name](const std::string& s) { *field = parse_number<T>(name, s); }, help);
+}
+}  // namespace
+
+void Tool::option(const std::string& name, double* field, const std::string& help) {
+    bind_number(*this, name, field, help);
+}
+void Tool::option(const std::string& name, float* field, const std::string& help) {
+    bind_number(*this, name, field, help);
+}
+void Tool::option(const std::string& name, int* field, const std::string& help) {
+    bind_number(*this, name, field, help);
+}
+void Tool::option(const std::string& name, std::uint32_t* field, const std::string& help) {
+    bind_number(*this, name, field, help);
+}
+void Tool::option(const std::string& name, std::uint64_t* field, const std::string& help) {
+    bind_number(*this, name, field, help);
+}
+
+void Tool::option(const std::string& name, std::string* field, const std::string& help) {
+    option(name, *field, [field](const std::string& s) { *field = s; }, help);
+}
+
+void Tool::option(const std::string& name, std::array<double, 3>* field, const std::string& help) {
+    const auto& v = *field;
+    const std::string text = number_text(v[0]) + "," + number_text(v[1]) + "," + number_text(v[2]);
+    option(name, text,
+           [field, name](const std::string& s) {
+               std::array<double, 3> out{};
+               std::size_t start = 0;
+               for (int k = 0; k < 3; ++k) {
+                   const std::size_t comma = s.find(',', start);
+                   if ((k < 2) == (comma == std::string::npos)) {
+                       throw InvalidArgument("--" + name + ": expected x,y,z, got '" + s + "'");
+                   }
+                   out[k] = parse_number<double>(name, s.substr(start, comma - start));
+                   start = comma + 1;
+               }
+               *field = out;
+           },
+           help);
+}
+
+void Tool::flag(const std::string& name, bool* field, const std::string& help) {
+    impl_->own.add_options()(name.c_str(), po::bool_switch(), help.c_str());
+    impl_->bindings.push_back({name, true, [field](const std::string&) { *field = true; }});
+}
+
+void Tool::presets(const std::vector<std::string>& names,
+                   std::function<void(const std::string&)> apply) {
+    std::string list;
+    for (const auto& n : names) {
+        list += (list.empty() ? "" : ", ") + n;
+    }
+    impl_->own.add_options()("preset", po::value<std::string>(&impl_->preset),
+                             ("named parameter set, applied before explicit options: " + list)
+                                 .c_str());
+    impl_->apply_preset = [names, apply = std::move(apply)](const std::string& p) {
+        if (std::find(names.begin(), names.end(), p) == names.end()) {
+            throw InvalidArgument("--preset: unknown preset '" + p + "'");
+        }
+        apply(p);
+    };
+}
+
+void Tool::epilog(const std::string& text) { impl_->epilog = text; }
+
+int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
+    std::signal(SIGPIPE, SIG_IGN);  // a closed pipe becomes EPIPE, handled quietly below
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // PCL's info level writes to stdout
+    Impl& im = *impl_;
+    Streams io;
+    io.tool_ = im.name;
+    const bool cloud_out = im.output == Output::kCloud;
+    po::options_description common("Common options");
+    common.add_options()("help,h", "print this help and exit")("version", "print the version")(
+        "input,i", po::value<std::string>(&io.input_)->default_value("-"),
+        "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)")(
+        "output,o", po::value<std::string>(&io.output_)->default_value("-"),
+        cloud_out ? "output cloud ('-' = stdout); written to a temporary file and renamed"
+                  : "output report ('-' = stdout)")(
+        "max-input-bytes",
+        po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
+        "refuse inputs larger than this")("verbose,v", po::bool_switch(&io.verbose_),
+                                          "notes and timings on stderr")(
+        "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
+    if (cloud_out) {
+        common.add_options()("format", po::value<std::string>(&io.encoding_)->default_value("binary"),
+                             "PCD encoding: binary, ascii or compressed (PLY: binary or ascii)")(
+            "to", po::value<std::string>(&io.container_)->default_value("auto"),
+            "output container: pcd, ply, or auto (ply when -o ends in .ply)");
+    }
+    po::options_description all;
+    all.add(im.own).add(common);
+    const auto report = [&](const std::string& what) {
+        std::cerr << im.name << ": error: " << what << '\n';
+    };
+    try {
+        po::variables_map vm;
+        po::store(po::command_line_parser(argc, argv).options(all).run(), vm);
+        if (vm.count("help")) {
+            std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
+                      << " [options] [-i IN] [-o OUT]\n\n"
+                      << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
+                      << im.epilog;
+            return kOk;
+        }
+        if (vm.count("version")) {
+            std::cout << im.name << " " << PC_VERSION << '\n';
+            return kOk;
+        }
+        po::notify(vm);
+        if (im.apply_preset && !im.preset.empty()) {
+            im.apply_preset(im.preset);
+        }
+        for (const Binding& b : im.bindings) {
+            const auto it = vm.find(b.name);
+            if (it == vm.end() || it->second.defaulted()) {
+                continue;
+            }
+            if (b.is_flag) {
+                if (it->second.as<bool>()) {
+                    b.assign("");
+                }
+            } else {
+                b.assign(it->second.as<std::string>());
+            }
+        }
+        if (cloud_out) {
+            if (io.encoding_ != "binary" && io.encoding_ != "ascii" && io.encoding_ != "compressed") {
+                throw InvalidArgument("--format must be binary, ascii or compressed, got '" +
+                                      io.encoding_ + "'");
+            }
+            if (io.container_ != "auto" && io.container_ != "pcd" && io.container_ != "ply") {
+                throw InvalidArgument("--to must be pcd, ply or auto, got '" + io.container_ + "'");
+            }
+            if (io.output_ == "-" && io.encoding_ != "ascii" && ::isatty(1)) {
+                throw InvalidArgument("refusing to write a binary cloud to a terminal; use -o FILE, "
+                                      "a pipe, or --format ascii");
+            }
+        }
+        if (io.input_ == "-" && ::isatty(0)) {
+            throw InvalidArgument("no input: standard input is a terminal; use -i FILE or a pipe");
+        }
+        io.input_name_ = io::display_name(io.input_);
+        if (io.output_ == "-") {
+            struct stat st {};
+            if (::fstat(1, &st) == 0 && S_ISFIFO(st.st_mode)) {
+                (void)::fcntl(1, F_SETPIPE_SZ, 1 << 20);
+            }
+        }
+        body(io);
+        return kOk;
+    } catch (const po::error& e) {
+        report(std::string(e.what()) + " (try '" + im.name + " --help')");
+        return kUsage;
+    } catch (const InvalidArgument& e) {
+        report(std::string(e.what()) + " (try '" + im.name + " --help')");
+        return kUsage;
+    } catch (const io::BrokenPipe&) {
+        return kFailure;  // the reader went away (`| head`): nothing to say
+    } catch (const std::bad_alloc&) {
+        report(io.input_name_ + ": out of memory");
+        return kFailure;
+    } catch (const std::exception& e) {
+        report(e.what());
+        return kFailure;
+    } catch (...) {
+        report("unknown internal error");
+        return kFailure;
+    }
+}
+
+}  // namespace pc::cli

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <pcl/PCLPointCloud2.h>
+
+namespace pc::io {
+
+/// A cloud exactly as read: every field (padding `_` and COUNT > 1 included) in a PCLPointCloud2,
+/// plus the PCD VIEWPOINT (tx ty tz qw qx qy qz) so that it survives a pipe.
+struct Blob {
+    pcl::PCLPointCloud2 cloud;
+    std::array<float, 7> viewpoint{0, 0, 0, 1, 0, 0, 0};
+
+    [[nodiscard]] std::size_t size() const {
+        return std::size_t{cloud.width} * std::size_t{cloud.height};
+    }
+};
+
+/// Bytes of one element of a PCLPointField datatype; 0 for an unknown datatype.
+[[nodiscard]] std::size_t type_size(std::uint8_t datatype);
+/// 'I', 'U' or 'F' for a known datatype, '?' otherwise.
+[[nodiscard]] char type_letter(std::uint8_t datatype);
+/// The datatype for a PCD TYPE letter and SIZE (I/U: 1,2,4,8; F: 4,8); 0 when the pair is invalid.
+[[nodiscard]] std::uint8_t datatype_of(char letter, std::size_t size);
+
+/// The field called `name`, or nullptr.
+[[nodiscard]] const pcl::PCLPointField* find_field(const Blob& blob, std::string_view name);
+
+/// Reads one element of a field as double (any datatype). `p` points at the element.
+[[nodiscard]] double value_as_double(const std::uint8_t* p, std::uint8_t datatype);
+
+/// An empty cloud (width 0, height 1) with the same fields, point_step and viewpoint as `blob`.
+[[nodiscard]] Blob empty_like(const Blob& blob);
+
+/// The points at `indices`, in that order, all fields kept; the result is unorganised (height 1).
+[[nodiscard]] Blob select(const Blob& blob, std::span<const std::uint32_t> indices);
+
+/// `blob` with a `U 4` field `name` set from `values` (one per point). An existing field of that
+/// name is replaced wherever it sits, so repeated runs of a tool do not stack copies.
+[[nodiscard]] Blob with_field(const Blob& blob,
+                              const std::string& name,
+                              std::span<const std::uint32_t> values);
+
+/// Recomputes cloud.is_dense as PCL does: true iff every F4/F8 element of every point is finite.
+void update_is_dense(Blob& blob);
+
+/// Checks point_step, row_step, data size and field bounds; throws pc::IoError when inconsistent.
+void check_layout(const Blob& blob);
+
+}  // namespace pc::io

@@ -1,0 +1,216 @@
+#include <pc/io/blob.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <pc/core/error.h>
+
+namespace pc::io {
+
+using Field = pcl::PCLPointField;
+
+std::size_t type_size(std::uint8_t datatype) {
+    switch (datatype) {
+        case Field::INT8:
+        case Field::UINT8: return 1;
+        case Field::INT16:
+        case Field::UINT16: return 2;
+        case Field::INT32:
+        case Field::UINT32:
+        case Field::FLOAT32: return 4;
+        case Field::FLOAT64:
+        case Field::INT64:
+        case Field::UINT64: return 8;
+        default: return 0;
+    }
+}
+
+char type_letter(std::uint8_t datatype) {
+    switch (datatype) {
+        case Field::INT8:
+        case Field::INT16:
+        case Field::INT32:
+        case Field::INT64: return 'I';
+        case Field::UINT8:
+        case Field::UINT16:
+        case Field::UINT32:
+        case Field::UINT64: return 'U';
+        case Field::FLOAT32:
+        case Field::FLOAT64: return 'F';
+        default: return '?';
+    }
+}
+
+std::uint8_t datatype_of(char letter, std::size_t size) {
+    if (letter == 'F') {
+        return size == 4 ? Field::FLOAT32 : size == 8 ? Field::FLOAT64 : 0;
+    }
+    const bool is_signed = letter == 'I';
+    if (!is_signed && letter != 'U') {
+        return 0;
+    }
+    switch (size) {
+        case 1: return is_signed ? Field::INT8 : Field::UINT8;
+        case 2: return is_signed ? Field::INT16 : Field::UINT16;
+        case 4: return is_signed ? Field::INT32 : Field::UINT32;
+        case 8: return is_signed ? Field::INT64 : Field::UINT64;
+        default: return 0;
+    }
+}
+
+const Field* find_field(const Blob& blob, std::string_view name) {
+    for (const auto& f : blob.cloud.fields) {
+        if (f.name == name) {
+            return &f;
+        }
+    }
+    return nullptr;
+}
+
+namespace {
+template <class T>
+double load(const std::uint8_t* p) {
+    T v;
+    std::memcpy(&v, p, sizeof v);
+    return static_cast<double>(v);
+}
+}  // namespace
+
+double value_as_double(const std::uint8_t* p, std::uint8_t datatype) {
+    switch (datatype) {
+        case Field::INT8: return load<std::int8_t>(p);
+        case Field::UINT8: return load<std::uint8_t>(p);
+        case Field::INT16: return load<std::int16_t>(p);
+        case Field::UINT16: return load<std::uint16_t>(p);
+        case Field::INT32: return load<std::int32_t>(p);
+        case Field::UINT32: return load<std::uint32_t>(p);
+        case Field::FLOAT32: return load<float>(p);
+        case Field::FLOAT64: return load<double>(p);
+        case Field::INT64: return load<std::int64_t>(p);
+        case Field::UINT64: return load<std::uint64_t>(p);
+        default: return std::nan("");
+    }
+}
+
+Blob empty_like(const Blob& blob) {
+    Blob out;
+    out.viewpoint = blob.viewpoint;
+    out.cloud.header = blob.cloud.header;
+    out.cloud.fields = blob.cloud.fields;
+    out.cloud.point_step = blob.cloud.point_step;
+    out.cloud.is_bigendian = blob.cloud.is_bigendian;
+    out.cloud.width = 0;
+    out.cloud.height = 1;
+    out.cloud.row_step = 0;
+    out.cloud.is_dense = true;
+    return out;
+}
+
+Blob select(const Blob& blob, std::span<const std::uint32_t> indices) {
+    Blob out = empty_like(blob);
+    const std::size_t step = blob.cloud.point_step;
+    const std::size_t n = blob.size();
+    out.cloud.data.resize(indices.size() * step);
+    std::uint8_t* dst = out.cloud.data.data();
+    const std::uint8_t* src = blob.cloud.data.data();
+    for (const std::uint32_t i : indices) {
+        if (i >= n) {
+            throw Error("select: index must be < " + std::to_string(n) + ", got " +
+                        std::to_string(i));
+        }
+        std::memcpy(dst, src + std::size_t{i} * step, step);
+        dst += step;
+    }
+    out.cloud.width = static_cast<std::uint32_t>(indices.size());
+    out.cloud.row_step = static_cast<std::uint32_t>(indices.size() * step);
+    out.cloud.is_dense = blob.cloud.is_dense;
+    return out;
+}
+
+Blob with_field(const Blob& blob, const std::string& name, std::span<const std::uint32_t> values) {
+    const std::size_t n = blob.size();
+    if (values.size() != n) {
+        throw Error("with_field: values must be one per point (" + std::to_string(n) + "), got " +
+                    std::to_string(values.size()));
+    }
+    const Field* existing = find_field(blob, name);
+    if (existing != nullptr && existing->datatype == Field::UINT32 && existing->count == 1) {
+        Blob out = blob;  // same layout: overwrite in place
+        for (std::size_t i = 0; i < n; ++i) {
+            std::memcpy(&out.cloud.data[i * blob.cloud.point_step + existing->offset], &values[i], 4);
+        }
+        return out;
+    }
+    // Append a U 4 field at the end of each point (after dropping an old field of that name).
+    Blob out = empty_like(blob);
+    out.cloud.fields.clear();
+    for (const auto& f : blob.cloud.fields) {
+        if (f.name != name) {
+            out.cloud.fields.push_back(f);
+        }
+    }
+    const std::size_t old_step = blob.cloud.point_step;
+    const std::size_t new_step = old_step + 4;
+    Field f;
+    f.name = name;
+    f.offset = static_cast<std::uint32_t>(old_step);
+    f.datatype = Field::UINT32;
+    f.count = 1;
+    out.cloud.fields.push_back(f);
+    out.cloud.point_step = static_cast<std::uint32_t>(new_step);
+    out.cloud.width = blob.cloud.width;
+    out.cloud.height = blob.cloud.height;
+    out.cloud.row_step = static_cast<std::uint32_t>(new_step * blob.cloud.width);
+    out.cloud.is_dense = blob.cloud.is_dense;
+    out.cloud.data.resize(n * new_step);
+    for (std::size_t i = 0; i < n; ++i) {
+        std::memcpy(&out.cloud.data[i * new_step], &blob.cloud.data[i * old_step], old_step);
+        std::memcpy(&out.cloud.data[i * new_step + old_step], &values[i], 4);
+    }
+    return out;
+}
+
+void update_is_dense(Blob& blob) {
+    const std::size_t n = blob.size();
+    const std::size_t step = blob.cloud.point_step;
+    const std::uint8_t* data = blob.cloud.data.data();
+    for (const auto& f : blob.cloud.fields) {
+        if (f.datatype != Field::FLOAT32 && f.datatype != Field::FLOAT64) {
+            continue;
+        }
+        const std::size_t es = type_size(f.datatype);
+        for (std::size_t i = 0; i < n; ++i) {
+            for (std::size_t c = 0; c < f.count; ++c) {
+                if (!std::isfinite(value_as_double(data + i * step + f.offset + c * es, f.datatype))) {
+                    blob.cloud.is_dense = false;
+                    return;
+                }
+            }
+        }
+    }
+    blob.cloud.is_dense = true;
+}
+
+void check_layout(const Blob& blob) {
+    const auto& c = blob.cloud;
+    const std::size_t need = blob.size() * std::size_t{c.point_step};
+    if (c.data.size() < need) {
+        throw IoError("cloud data holds " + std::to_string(c.data.size()) + " B, " +
+                      std::to_string(blob.size()) + " points x " + std::to_string(c.point_step) +
+                      " B need " + std::to_string(need));
+    }
+    for (const auto& f : c.fields) {
+        const std::size_t es = type_size(f.datatype);
+        if (es == 0) {
+            throw IoError("field '" + f.name + "' has unknown datatype " +
+                          std::to_string(int{f.datatype}));
+        }
+        if (f.count == 0 || f.offset + es * f.count > c.point_step) {
+            throw IoError("field '" + f.name + "' does not fit in point_step " +
+                          std::to_string(c.point_step));
+        }
+    }
+}
+
+}  // namespace pc::io
