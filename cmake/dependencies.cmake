@@ -14,9 +14,10 @@ target_compile_definitions(pc_pcl_common INTERFACE ${PCL_DEFINITIONS})
 
 if(PC_BUILD_TESTS)
     find_package(GTest REQUIRED)
-    # Tests compare our reader with PCL's own PCD reader/writer.
-    find_package(PCL 1.12 REQUIRED COMPONENTS common io)
+    # Tests compare our reader with PCL's own PCD reader/writer. PCL's `io` component would make
+    # CMake load VTK's config, which on Debian bookworm fails without MPI; the PCD code needs no
+    # VTK header, so link the library directly.
+    find_library(PC_PCL_IO_LIBRARY NAMES pcl_io REQUIRED)
     add_library(pc_pcl_io INTERFACE)
-    target_include_directories(pc_pcl_io SYSTEM INTERFACE ${PCL_INCLUDE_DIRS})
-    target_link_libraries(pc_pcl_io INTERFACE pcl_io pcl_common)
+    target_link_libraries(pc_pcl_io INTERFACE ${PC_PCL_IO_LIBRARY} pc_pcl_common)
 endif()

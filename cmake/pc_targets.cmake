@@ -31,6 +31,7 @@ endfunction()
 function(pc_add_test module)
     cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
     add_executable(test_${module} ${ARG_SOURCES})
+    set_target_properties(test_${module} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests)
     target_compile_options(test_${module} PRIVATE ${PC_WARNING_FLAGS})
     target_include_directories(test_${module} PRIVATE ${PROJECT_SOURCE_DIR}/tests)
     target_compile_definitions(test_${module} PRIVATE

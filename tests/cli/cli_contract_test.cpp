@@ -1,0 +1,119 @@
+// The CLI contract (docs/architecture.md), checked on every tool through real processes and pipes.
+#include <filesystem>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include <pc/io/pcd.h>
+
+#include "support/corpus.h"
+#include "support/run_tool.h"
+
+namespace pc::test {
+namespace {
+
+std::vector<std::string> all_tools() {
+    std::vector<std::string> out;
+    std::stringstream ss(PC_TOOL_LIST);
+    for (std::string t; std::getline(ss, t, ',');) {
+        out.push_back(t);
+    }
+    return out;
+}
+
+/// A small valid cloud every tool accepts (x y z rgb, binary PCD).
+std::string valid_cloud() {
+    return pcd_header("x y z rgb", "4 4 4 4", "F F F U", "1 1 1 1", "3", "3", "ascii") +
+           "0 0 0 16711680\n0.001 0 0 16711680\n0 0.001 0 16711680\n";
+}
+
+class Contract : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Contract, HelpGoesToStdoutAndExitsZero) {
+    const RunResult r = run_shell("@" + GetParam() + " --help");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_NE(r.out.find(GetParam()), std::string::npos);
+    EXPECT_NE(r.out.find("--input"), std::string::npos);
+    EXPECT_TRUE(r.err.empty()) << r.err;
+}
+
+TEST_P(Contract, VersionExitsZero) {
+    const RunResult r = run_shell("@" + GetParam() + " --version");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_EQ(line_count(r.out), 1);
+}
+
+TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
+    const RunResult r = run_shell("@" + GetParam() + " --bogus", valid_cloud());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind(GetParam() + ": error: ", 0), 0u) << r.err;
+    EXPECT_TRUE(r.out.empty());
+}
+
+TEST_P(Contract, UnparsableValueIsAUsageError) {
+    const RunResult r = run_shell("@" + GetParam() + " --max-input-bytes lots", valid_cloud());
+    EXPECT_EQ(r.code, 2);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+}
+
+TEST_P(Contract, TruncatedCloudOnStdinFailsWithOneLineNamingStdin) {
+    const RunResult r =
+        run_shell("@" + GetParam(), xyz_header("100", "binary") + floats({1, 2, 3}));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("<stdin>: truncated binary body"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+}
+
+TEST_P(Contract, ValidCloudSucceedsSilently) {
+    const RunResult r = run_shell("@" + GetParam(), valid_cloud());
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_FALSE(r.out.empty());
+}
+
+TEST_P(Contract, EveryMalformedInputFailsCleanlyByPathAndByPipe) {
+    TempDir dir;
+    for (const auto& m : malformed_corpus()) {
+        const std::string in = dir.file(m.name + ".in");
+        spit(in, m.bytes);
+        const std::string out = dir.file("out.pcd");
+        for (const bool by_path : {true, false}) {
+            const std::string cmd = by_path ? "@" + GetParam() + " -i " + in + " -o " + out
+                                            : "cat " + in + " | @" + GetParam() + " -o " + out;
+            const RunResult r = run_shell("timeout 10 sh -c 'ulimit -v 4000000; " + cmd + "'");
+            EXPECT_EQ(r.code, 1) << m.name << (by_path ? " by path: " : " by pipe: ") << r.err;
+            EXPECT_EQ(line_count(r.err), 1) << m.name << ": " << r.err;
+            EXPECT_NE(r.err.find(by_path ? in + ": " : std::string("<stdin>: ")), std::string::npos)
+                << m.name << ": " << r.err;
+            EXPECT_FALSE(std::filesystem::exists(out)) << m.name;
+        }
+        std::filesystem::remove(in);
+        EXPECT_TRUE(std::filesystem::is_empty(dir.path)) << m.name << ": a temporary file was left";
+    }
+}
+
+TEST_P(Contract, EdgeCaseInputsAreAccepted) {
+    for (const auto& e : edge_corpus()) {
+        const RunResult r = run_shell("@" + GetParam(), e.bytes);
+        EXPECT_EQ(r.code, 0) << e.name << ": " << r.err;
+        EXPECT_TRUE(r.err.empty()) << e.name << ": " << r.err;
+    }
+}
+
+TEST_P(Contract, DirectoryInputIsRejected) {
+    const RunResult r = run_shell("@" + GetParam() + " -i /tmp");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, GetParam() + ": error: /tmp: is a directory\n");
+}
+
+TEST_P(Contract, HasADocPage) {
+    EXPECT_TRUE(std::filesystem::exists(std::string(PC_DOCS_DIR) + "/tools/" + GetParam() + ".md"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Tools, Contract, ::testing::ValuesIn(all_tools()),
+                         [](const auto& p) { return p.param; });
+
+}  // namespace
+}  // namespace pc::test

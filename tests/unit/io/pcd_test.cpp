@@ -1,0 +1,174 @@
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/io/pcd.h>
+
+#include "support/corpus.h"
+#include "support/synthetic.h"
+
+namespace pc::io {
+namespace {
+
+using F = pcl::PCLPointField;
+
+/// Every datatype with COUNT 1 and 3, padding, non-finite floats, rgb with a NaN bit pattern,
+/// organised 3 x 2, a non-default viewpoint.
+Blob every_type_cloud() {
+    std::vector<test::FieldSpec> specs = {{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
+                                          {"rgb", F::FLOAT32}, {"_", F::UINT8, 3}};
+    const std::uint8_t types[] = {F::INT8,  F::UINT8,  F::INT16,   F::UINT16,  F::INT32,
+                                  F::UINT32, F::INT64, F::UINT64, F::FLOAT32, F::FLOAT64};
+    for (std::uint8_t t : types) {
+        specs.push_back({"t" + std::to_string(int{t}), t, 1});
+        specs.push_back({"v" + std::to_string(int{t}), t, 3});
+    }
+    Blob b = test::make_blob(specs, 3, 2, [](std::size_t i, std::size_t k, std::uint32_t c) {
+        const double base = (static_cast<double>(i) - 2.5) * 37.25 + k * 1.125 + c;
+        return k < 3 ? base * 0.1 + 1e-7 * static_cast<double>(k) : base;
+    });
+    // A float with all mantissa bits, a subnormal, NaN and infinities.
+    const float specials[] = {0.1f, std::numeric_limits<float>::denorm_min(),
+                              std::numeric_limits<float>::quiet_NaN(),
+                              std::numeric_limits<float>::infinity(),
+                              -std::numeric_limits<float>::infinity(), 3.4028235e38f};
+    for (std::size_t i = 0; i < 6; ++i) {
+        std::memcpy(&b.cloud.data[i * b.cloud.point_step + 4], &specials[i], 4);
+    }
+    test::set_bits(b, 0, 3, 0xFFFFFFFFu);  // white with alpha: a NaN when read as float
+    test::set_bits(b, 1, 3, 0xFF7F0001u);
+    b.viewpoint = {1.5f, -2, 3, 0.5f, 0.5f, 0.5f, 0.5f};
+    update_is_dense(b);
+    return b;
+}
+
+std::string field_bytes(const Blob& b, const std::string& name) {
+    const auto* f = find_field(b, name);
+    if (f == nullptr) {
+        return "<missing>";
+    }
+    const std::size_t fs = type_size(f->datatype) * f->count;
+    std::string out;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        out.append(reinterpret_cast<const char*>(&b.cloud.data[i * b.cloud.point_step + f->offset]),
+                   fs);
+    }
+    return out;
+}
+
+Blob round_trip(const Blob& b, PcdEncoding e) {
+    StringSink sink;
+    write_pcd(b, e, sink);
+    return parse_pcd(sink.out).blob;
+}
+
+class PcdRoundTrip : public ::testing::TestWithParam<PcdEncoding> {};
+
+TEST_P(PcdRoundTrip, EveryFieldComesBackBitIdentical) {
+    const Blob in = every_type_cloud();
+    const Blob out = round_trip(in, GetParam());
+    EXPECT_EQ(out.cloud.width, 3u);
+    EXPECT_EQ(out.cloud.height, 2u);
+    EXPECT_EQ(out.viewpoint, in.viewpoint);
+    EXPECT_EQ(out.cloud.is_dense, in.cloud.is_dense);
+    for (const auto& f : in.cloud.fields) {
+        if (f.name == "_") {
+            continue;
+        }
+        const auto* g = find_field(out, f.name);
+        ASSERT_NE(g, nullptr) << f.name;
+        EXPECT_EQ(g->count, f.count) << f.name;
+        EXPECT_EQ(g->datatype, f.name == "rgb" ? std::uint8_t{F::UINT32} : f.datatype) << f.name;
+        EXPECT_EQ(field_bytes(out, f.name), field_bytes(in, f.name)) << f.name;
+    }
+    if (GetParam() != PcdEncoding::kBinaryCompressed) {  // layout, padding included, is kept
+        EXPECT_EQ(out.cloud.point_step, in.cloud.point_step);
+        EXPECT_EQ(out.cloud.data, in.cloud.data);
+    }
+}
+
+TEST_P(PcdRoundTrip, EmptyCloudStaysEmpty) {
+    Blob in = test::random_xyz(0);
+    const Blob out = round_trip(in, GetParam());
+    EXPECT_EQ(out.size(), 0u);
+    EXPECT_EQ(out.cloud.fields.size(), 3u);
+}
+
+TEST_P(PcdRoundTrip, LargeCloudRoundTrips) {
+    const Blob in = test::random_xyz(100000, 9);
+    EXPECT_EQ(round_trip(in, GetParam()).cloud.data, in.cloud.data);
+}
+
+INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
+                         ::testing::Values(PcdEncoding::kAscii, PcdEncoding::kBinary,
+                                           PcdEncoding::kBinaryCompressed),
+                         [](const auto& p) {
+                             return p.param == PcdEncoding::kAscii    ? std::string("Ascii")
+                                    : p.param == PcdEncoding::kBinary ? std::string("Binary")
+                                                                      : std::string("Compressed");
+                         });
+
+TEST(Pcd, GapsBetweenFieldsBecomePaddingFields) {
+    Blob b = test::random_xyz(2);
+    b.cloud.point_step = 16;  // PointXYZ layout: 4 bytes of padding after z
+    b.cloud.data.resize(32);
+    StringSink sink;
+    write_pcd(b, PcdEncoding::kBinary, sink);
+    EXPECT_NE(sink.out.find("FIELDS x y z _\nSIZE 4 4 4 1\nTYPE F F F U\nCOUNT 1 1 1 4\n"),
+              std::string::npos);
+    EXPECT_EQ(parse_pcd(sink.out).blob.cloud.point_step, 16u);
+}
+
+TEST(Pcd, EdgeCasesLoadWithTheirPointCount) {
+    for (const auto& e : test::edge_corpus()) {
+        if (e.name.rfind("text_", 0) == 0) {
+            continue;
+        }
+        ReadResult r;
+        ASSERT_NO_THROW(r = parse_pcd(e.bytes)) << e.name;
+        EXPECT_EQ(r.blob.size(), e.points) << e.name;
+    }
+}
+
+TEST(Pcd, BinaryBodySpellingDataReadsTheFloat) {
+    for (const auto& e : test::edge_corpus()) {
+        if (e.name == "binary_spelling_DATA") {
+            const Blob b = parse_pcd(e.bytes).blob;
+            float x;
+            std::memcpy(&x, b.cloud.data.data(), 4);
+            EXPECT_EQ(x, 13.265934f);
+        }
+    }
+}
+
+TEST(Pcd, AsciiReadsNanAndInfinity) {
+    const Blob b = parse_pcd(test::xyz_header("1", "ascii") + "nan -inf +1.5\n").blob;
+    float v[3];
+    std::memcpy(v, b.cloud.data.data(), 12);
+    EXPECT_TRUE(std::isnan(v[0]));
+    EXPECT_EQ(v[1], -std::numeric_limits<float>::infinity());
+    EXPECT_EQ(v[2], 1.5f);
+    EXPECT_FALSE(b.cloud.is_dense);
+}
+
+TEST(Pcd, TrailingBytesAreANoteNotAnError) {
+    const ReadResult r = parse_pcd(test::xyz_header("1", "binary") + test::floats({1, 2, 3}) + "xx");
+    ASSERT_EQ(r.notes.size(), 1u);
+    EXPECT_NE(r.notes[0].find("2 trailing bytes"), std::string::npos);
+}
+
+TEST(Pcd, TruncationMessageGivesTheNumbers) {
+    try {
+        (void)parse_pcd(test::xyz_header("100", "binary") + std::string(600, '\0'));
+        FAIL();
+    } catch (const IoError& e) {
+        EXPECT_STREQ(e.what(),
+                     "truncated binary body: header declares 100 points x 12 B = 1200 B, 600 B "
+                     "present");
+    }
+}
+
+}  // namespace
+}  // namespace pc::io
