@@ -37,7 +37,8 @@ function(pc_add_test module)
     target_compile_definitions(test_${module} PRIVATE
         PC_SAMPLE_CLOUDS_DIR="${PROJECT_SOURCE_DIR}/sample_clouds"
         PC_TOOLS_DIR="${CMAKE_RUNTIME_OUTPUT_DIRECTORY}"
-        PC_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs")
+        PC_DOCS_DIR="${PROJECT_SOURCE_DIR}/docs"
+        $<$<BOOL:${PC_SANITIZE}>:PC_SANITIZE>)
     target_link_libraries(test_${module} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main)
     gtest_discover_tests(test_${module} DISCOVERY_TIMEOUT 60 PROPERTIES TIMEOUT 120)
 endfunction()

@@ -82,7 +82,7 @@ TEST_P(Contract, EveryMalformedInputFailsCleanlyByPathAndByPipe) {
         for (const bool by_path : {true, false}) {
             const std::string cmd = by_path ? "@" + GetParam() + " -i " + in + " -o " + out
                                             : "cat " + in + " | @" + GetParam() + " -o " + out;
-            const RunResult r = run_shell("timeout 10 sh -c 'ulimit -v 4000000; " + cmd + "'");
+            const RunResult r = run_shell("timeout 10 sh -c '" + memory_cap(4000000) + cmd + "'");
             EXPECT_EQ(r.code, 1) << m.name << (by_path ? " by path: " : " by pipe: ") << r.err;
             EXPECT_EQ(line_count(r.err), 1) << m.name << ": " << r.err;
             EXPECT_NE(r.err.find(by_path ? in + ": " : std::string("<stdin>: ")), std::string::npos)

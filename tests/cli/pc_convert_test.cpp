@@ -60,7 +60,7 @@ TEST(PcConvert, HugeClaimFailsAtOnceWithinAMemoryCap) {
     const std::string f = dir.file("liar.pcd");
     spit(f, xyz_header("4000000000", "binary") + floats({1, 2, 3}));
     ASSERT_LT(slurp(f).size(), 250u);
-    const RunResult r = run_shell("timeout 5 sh -c 'ulimit -v 300000; @pc_convert -i " + f + "'");
+    const RunResult r = run_shell("timeout 5 sh -c '" + memory_cap(300000) + "@pc_convert -i " + f + "'");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("header declares 4000000000 points x 12 B = 48000000000 B, 12 B present"),
               std::string::npos)

@@ -60,6 +60,17 @@ inline RunResult run_shell(std::string command, const std::string& stdin_bytes =
     return r;
 }
 
+/// A shell prefix capping the virtual memory of what follows at `kib` KiB. Empty in sanitizer
+/// builds, whose shadow memory needs terabytes of address space.
+inline std::string memory_cap(long kib) {
+#ifdef PC_SANITIZE
+    (void)kib;
+    return "";
+#else
+    return "ulimit -v " + std::to_string(kib) + "; ";
+#endif
+}
+
 /// Number of lines in `s` (a final line without '\n' counts).
 inline int line_count(const std::string& s) {
     int n = 0;
