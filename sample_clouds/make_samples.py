@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Makes the shipped sample clouds. Deterministic (fixed seeds), standard library only.
 
-fruit_small.ply: an Open3D-style binary PLY (double x y z, uchar red green blue) of a toy fruit
+fruit_small.ply: an Open3D-style binary PLY (double x y z, uchar red green blue) of a toy peach
 tree in metres: 12 solid fruit of radius 3 cm (one pair 2 mm apart), green leaf points, dark
 background points and sparse outliers. Ground truth: 12 fruit; centres in fruit_small.json.
 """
@@ -51,7 +51,7 @@ def fruit_small():
     for c in centres:
         for p in ball(rng, c, r, 300):
             points.append(p)
-            colours.append((rng.randint(180, 240), rng.randint(20, 60), rng.randint(20, 50)))
+            colours.append((rng.randint(220, 255), rng.randint(140, 200), rng.randint(60, 120)))
     for _ in range(1200):  # leaves: green, spread through the canopy
         points.append([rng.uniform(-0.45, 0.45), rng.uniform(-0.45, 0.45), rng.uniform(-0.2, 0.2)])
         colours.append((rng.randint(30, 70), rng.randint(90, 150), rng.randint(20, 60)))

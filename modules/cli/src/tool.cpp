@@ -113,6 +113,35 @@ private:
 
 }  // namespace
 
+double parse_double(const std::string& option, const std::string& text) {
+    return parse_number<double>(option, text);
+}
+
+std::array<double, 3> parse_triple(const std::string& option, const std::string& text) {
+    std::array<double, 3> out{};
+    std::size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t comma = text.find(',', start);
+        if ((k < 2) == (comma == std::string::npos)) {
+            throw InvalidArgument("--" + option + ": expected x,y,z, got '" + text + "'");
+        }
+        out[k] = parse_number<double>(option, text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return out;
+}
+
+void write_cloud_file(const std::string& path, const io::Blob& blob) {
+    AtomicFile file(path);
+    io::FdSink sink(file.fd(), path);
+    if (ends_with(path, ".ply")) {
+        io::write_ply(blob, true, sink);
+    } else {
+        io::write_pcd(blob, io::PcdEncoding::kBinary, sink);
+    }
+    file.commit();
+}
+
 // ---------------------------------------------------------------------------------------------
 
 io::Blob Streams::read() {
@@ -221,6 +250,18 @@ void Tool::option(const std::string& name, std::uint64_t* field, const std::stri
     bind_number(*this, name, field, help);
 }
 
+void Tool::option(const std::string& name, std::optional<double>* field, const std::string& help) {
+    option(name, *field ? number_text(**field) : "off",
+           [field, name](const std::string& s) {
+               if (s == "off") {
+                   field->reset();
+               } else {
+                   *field = parse_number<double>(name, s);
+               }
+           },
+           help);
+}
+
 void Tool::option(const std::string& name, std::string* field, const std::string& help) {
     option(name, *field, [field](const std::string& s) { *field = s; }, help);
 }
@@ -228,20 +269,7 @@ void Tool::option(const std::string& name, std::string* field, const std::string
 void Tool::option(const std::string& name, std::array<double, 3>* field, const std::string& help) {
     const auto& v = *field;
     const std::string text = number_text(v[0]) + "," + number_text(v[1]) + "," + number_text(v[2]);
-    option(name, text,
-           [field, name](const std::string& s) {
-               std::array<double, 3> out{};
-               std::size_t start = 0;
-               for (int k = 0; k < 3; ++k) {
-                   const std::size_t comma = s.find(',', start);
-                   if ((k < 2) == (comma == std::string::npos)) {
-                       throw InvalidArgument("--" + name + ": expected x,y,z, got '" + s + "'");
-                   }
-                   out[k] = parse_number<double>(name, s.substr(start, comma - start));
-                   start = comma + 1;
-               }
-               *field = out;
-           },
+    option(name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); },
            help);
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -47,6 +48,14 @@ private:
     bool verbose_ = false, quiet_ = false, written_ = false;
 };
 
+/// A real number for option `--option`; throws pc::InvalidArgument naming it.
+[[nodiscard]] double parse_double(const std::string& option, const std::string& text);
+/// "x,y,z" for option `--option`; throws pc::InvalidArgument naming it.
+[[nodiscard]] std::array<double, 3> parse_triple(const std::string& option, const std::string& text);
+/// Writes a cloud to `path` (binary PCD, or binary PLY for a .ply name) through a temporary file
+/// renamed into place, so a failure never leaves a partial file.
+void write_cloud_file(const std::string& path, const io::Blob& blob);
+
 /// Command-line front end shared by every tool: option binding with generated --help, the common
 /// options (-i -o -v -q --format --version), exit codes and error lines. See docs/architecture.md.
 class Tool {
@@ -61,6 +70,8 @@ public:
     void option(const std::string& name, std::uint32_t* field, const std::string& help);
     void option(const std::string& name, std::uint64_t* field, const std::string& help);
     void option(const std::string& name, std::string* field, const std::string& help);
+    /// An optional number: "off" (the default text when unset) leaves it empty.
+    void option(const std::string& name, std::optional<double>* field, const std::string& help);
     /// A comma-separated triple such as `--min -1,-1,0`.
     void option(const std::string& name, std::array<double, 3>* field, const std::string& help);
     /// A switch without a value.

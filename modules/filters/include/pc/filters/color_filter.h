@@ -1,0 +1,40 @@
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+
+#include <pc/core/cloud.h>
+#include <pc/io/points.h>
+
+namespace pc::filters {
+
+/// An inclusive interval LO:HI. For hue (degrees) LO > HI wraps through 0, e.g. 300:30.
+struct Interval {
+    double lo = 0, hi = 0;
+};
+
+/// Parses "LO:HI" (two numbers); throws pc::InvalidArgument naming `option`.
+[[nodiscard]] Interval parse_interval(const std::string& option, const std::string& text);
+
+/// Parameters of color_filter(). Channels are in [0, 1]. Every rule given must hold (AND).
+struct ColorFilterParams {
+    std::optional<double> min_mean;   ///< keep iff (R+G+B)/3 > min_mean (strict; author script)
+    std::optional<double> min_value;  ///< keep iff HSV value max(R,G,B) > min_value (strict)
+    std::optional<Interval> hue_deg;  ///< keep iff hue in [lo, hi] degrees; grey never matches
+    std::optional<Interval> saturation;  ///< keep iff HSV saturation in [lo, hi] (0..1)
+    std::optional<Interval> value;       ///< keep iff HSV value in [lo, hi] (0..1)
+    bool invert = false;                 ///< keep exactly the points the rules reject
+
+    void validate() const;
+};
+
+struct ColorFilterResult {
+    Indices kept;  ///< ascending
+};
+
+/// Keeps points by colour. A NaN channel fails every rule. O(n).
+[[nodiscard]] ColorFilterResult color_filter(std::span<const io::Rgb> colours,
+                                             const ColorFilterParams& params);
+
+}  // namespace pc::filters

@@ -1,0 +1,99 @@
+#include <pc/filters/knn_outlier.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <pc/core/error.h>
+#include <pc/search/grid.h>
+
+namespace pc::filters {
+
+void KnnOutlierParams::validate() const {
+    if (k < 1) {
+        throw InvalidArgument("knn_outlier: k must be >= 1, got " + std::to_string(k));
+    }
+    if (!(drop_percentile >= 0 && drop_percentile < 100)) {
+        throw InvalidArgument("knn_outlier: drop_percentile must be in [0, 100), got " +
+                              format_number(drop_percentile));
+    }
+    if (std_mul && !std::isfinite(*std_mul)) {
+        throw InvalidArgument("knn_outlier: std_mul must be finite, got " + format_number(*std_mul));
+    }
+}
+
+double percentile(std::vector<double>& values, double q) {
+    if (values.empty()) {
+        return std::nan("");
+    }
+    const double pos = q / 100.0 * static_cast<double>(values.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    const double frac = pos - static_cast<double>(lo);
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(lo), values.end());
+    const double a = values[lo];
+    if (frac == 0 || lo + 1 >= values.size()) {
+        return a;
+    }
+    const double b = *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(lo) + 1, values.end());
+    return a + frac * (b - a);  // numpy's linear method
+}
+
+KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params) {
+    params.validate();
+    const std::size_t n = cloud.size();
+    KnnOutlierResult r;
+    r.mean_distance.assign(n, std::numeric_limits<double>::infinity());
+    r.outlier.assign(n, 1);
+    const search::Grid grid(cloud, search::Grid::suggest_cell(cloud));
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> idx;
+        std::vector<double> d2;
+#pragma omp for schedule(dynamic, 4096)
+        for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
+            grid.knn(static_cast<std::uint32_t>(i), params.k, idx, d2);
+            if (d2.empty()) {
+                continue;
+            }
+            double sum = 0;
+            for (double v : d2) {
+                sum += std::sqrt(v);
+            }
+            r.mean_distance[i] = sum / static_cast<double>(d2.size());
+        }
+    }
+    std::vector<double> finite;
+    finite.reserve(n);
+    for (double v : r.mean_distance) {
+        if (std::isfinite(v)) {
+            finite.push_back(v);
+        }
+    }
+    bool none = false;
+    if (params.std_mul) {
+        double mean = 0, sq = 0;
+        for (double v : finite) {
+            mean += v;
+        }
+        mean /= std::max<std::size_t>(finite.size(), 1);
+        for (double v : finite) {
+            sq += (v - mean) * (v - mean);
+        }
+        const double sigma = finite.size() > 1 ? std::sqrt(sq / static_cast<double>(finite.size() - 1)) : 0.0;
+        r.threshold = mean + *params.std_mul * sigma;
+        for (std::size_t i = 0; i < n; ++i) {
+            r.outlier[i] = !(r.mean_distance[i] <= r.threshold);
+        }
+        return r;
+    }
+    none = params.drop_percentile == 0;
+    r.threshold = none ? std::numeric_limits<double>::infinity()
+                       : percentile(finite, 100.0 - params.drop_percentile);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double v = r.mean_distance[i];
+        r.outlier[i] = !std::isfinite(v) || (!none && v >= r.threshold);
+    }
+    return r;
+}
+
+}  // namespace pc::filters

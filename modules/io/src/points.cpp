@@ -1,0 +1,224 @@
+#include <pc/io/points.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <pc/core/error.h>
+
+namespace pc::io {
+
+using Field = pcl::PCLPointField;
+
+namespace {
+bool is_real(std::uint8_t t) { return t == Field::FLOAT32 || t == Field::FLOAT64; }
+/// Writes an integer value (exact in double: all PCD integer types up to 2^53) as `datatype`.
+void store_integer(double v, std::uint8_t datatype, std::uint8_t* dst) {
+    switch (datatype) {
+        case Field::INT8: { const auto x = static_cast<std::int8_t>(v); std::memcpy(dst, &x, 1); break; }
+        case Field::UINT8: { const auto x = static_cast<std::uint8_t>(v); std::memcpy(dst, &x, 1); break; }
+        case Field::INT16: { const auto x = static_cast<std::int16_t>(v); std::memcpy(dst, &x, 2); break; }
+        case Field::UINT16: { const auto x = static_cast<std::uint16_t>(v); std::memcpy(dst, &x, 2); break; }
+        case Field::INT32: { const auto x = static_cast<std::int32_t>(v); std::memcpy(dst, &x, 4); break; }
+        case Field::UINT32: { const auto x = static_cast<std::uint32_t>(v); std::memcpy(dst, &x, 4); break; }
+        case Field::INT64: { const auto x = static_cast<std::int64_t>(v); std::memcpy(dst, &x, 8); break; }
+        default: { const auto x = static_cast<std::uint64_t>(v); std::memcpy(dst, &x, 8); break; }
+    }
+}
+
+bool is_packed_colour(const Field& f) {
+    return (f.name == "rgb" || f.name == "rgba") && type_size(f.datatype) == 4 && f.count == 1;
+}
+}  // namespace
+
+Cloud xyz(const Blob& blob) {
+    const Field* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
+    if (!axes[0] || !axes[1] || !axes[2]) {
+        throw IoError("cloud has no x y z fields");
+    }
+    const std::size_t n = blob.size();
+    Cloud cloud;
+    cloud.resize(n);
+    cloud.width = static_cast<std::uint32_t>(n);
+    cloud.height = 1;
+    const std::uint8_t* data = blob.cloud.data.data();
+    const std::size_t step = blob.cloud.point_step;
+    const bool fast = axes[0]->datatype == Field::FLOAT32 && axes[1]->datatype == Field::FLOAT32 &&
+                      axes[2]->datatype == Field::FLOAT32;
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint8_t* p = data + i * step;
+        auto& q = cloud[i];
+        if (fast) {
+            std::memcpy(&q.x, p + axes[0]->offset, 4);
+            std::memcpy(&q.y, p + axes[1]->offset, 4);
+            std::memcpy(&q.z, p + axes[2]->offset, 4);
+        } else {
+            q.x = static_cast<float>(value_as_double(p + axes[0]->offset, axes[0]->datatype));
+            q.y = static_cast<float>(value_as_double(p + axes[1]->offset, axes[1]->datatype));
+            q.z = static_cast<float>(value_as_double(p + axes[2]->offset, axes[2]->datatype));
+        }
+    }
+    cloud.is_dense = false;
+    return cloud;
+}
+
+std::vector<Rgb> colours(const Blob& blob) {
+    const std::size_t n = blob.size();
+    const std::size_t step = blob.cloud.point_step;
+    const std::uint8_t* data = blob.cloud.data.data();
+    std::vector<Rgb> out(n);
+    for (const char* packed : {"rgb", "rgba"}) {
+        const Field* f = find_field(blob, packed);
+        if (f != nullptr && is_packed_colour(*f)) {
+            for (std::size_t i = 0; i < n; ++i) {
+                std::uint32_t w;
+                std::memcpy(&w, data + i * step + f->offset, 4);
+                out[i] = {static_cast<float>((w >> 16) & 0xff) / 255.0f,
+                          static_cast<float>((w >> 8) & 0xff) / 255.0f,
+                          static_cast<float>(w & 0xff) / 255.0f};
+            }
+            return out;
+        }
+    }
+    for (const auto& trio : {std::array<const char*, 3>{"red", "green", "blue"},
+                             std::array<const char*, 3>{"r", "g", "b"}}) {
+        const Field* f[3] = {find_field(blob, trio[0]), find_field(blob, trio[1]),
+                             find_field(blob, trio[2])};
+        if (!f[0] || !f[1] || !f[2]) {
+            continue;
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            float c[3];
+            for (int k = 0; k < 3; ++k) {
+                const double v = value_as_double(data + i * step + f[k]->offset, f[k]->datatype);
+                c[k] = static_cast<float>(is_real(f[k]->datatype) ? v : v / 255.0);
+            }
+            out[i] = {c[0], c[1], c[2]};
+        }
+        return out;
+    }
+    throw IoError("cloud has no colour (looked for rgb, rgba, red green blue, r g b)");
+}
+
+std::vector<std::uint32_t> labels(const Blob& blob, const std::string& name) {
+    const Field* f = find_field(blob, name);
+    if (f == nullptr) {
+        throw IoError("cloud has no '" + name + "' field");
+    }
+    if (is_real(f->datatype) || f->count != 1) {
+        throw IoError("field '" + name + "' must be an integer with COUNT 1, got " +
+                      type_letter(f->datatype) + std::to_string(type_size(f->datatype)) +
+                      " COUNT " + std::to_string(f->count));
+    }
+    const std::size_t n = blob.size();
+    std::vector<std::uint32_t> out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double v = value_as_double(&blob.cloud.data[i * blob.cloud.point_step + f->offset],
+                                         f->datatype);
+        if (v < 0 || v > 4294967295.0) {
+            throw IoError("field '" + name + "' of point " + std::to_string(i) + " is " +
+                          format_number(v) + ", outside 0..4294967295");
+        }
+        out[i] = static_cast<std::uint32_t>(v);
+    }
+    return out;
+}
+
+Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::uint32_t group_count) {
+    const std::size_t n = blob.size();
+    if (group.size() != n) {
+        throw Error("aggregate: group must have one entry per point");
+    }
+    Blob out = empty_like(blob);
+    const std::size_t step = blob.cloud.point_step;
+    out.cloud.width = group_count;
+    out.cloud.row_step = static_cast<std::uint32_t>(group_count * step);
+    out.cloud.data.assign(std::size_t{group_count} * step, 0);
+    std::vector<std::uint32_t> members(group_count, 0);
+    for (std::uint32_t g : group) {
+        if (g != kNoGroup) {
+            ++members[g];
+        }
+    }
+    const std::uint8_t* src = blob.cloud.data.data();
+    std::uint8_t* dst = out.cloud.data.data();
+    for (const Field& f : blob.cloud.fields) {
+        if (f.name == "_") {
+            continue;
+        }
+        const std::size_t es = type_size(f.datatype);
+        if (is_packed_colour(f)) {
+            std::vector<std::array<double, 4>> sum(group_count, {0, 0, 0, 0});
+            for (std::size_t i = 0; i < n; ++i) {
+                if (group[i] == kNoGroup) {
+                    continue;
+                }
+                std::uint32_t w;
+                std::memcpy(&w, src + i * step + f.offset, 4);
+                for (int c = 0; c < 4; ++c) {
+                    sum[group[i]][c] += static_cast<double>((w >> (8 * c)) & 0xff);
+                }
+            }
+            for (std::uint32_t g = 0; g < group_count; ++g) {
+                std::uint32_t w = 0;
+                for (int c = 0; c < 4; ++c) {
+                    w |= static_cast<std::uint32_t>(std::lround(sum[g][c] / members[g])) << (8 * c);
+                }
+                std::memcpy(dst + g * step + f.offset, &w, 4);
+            }
+            continue;
+        }
+        for (std::uint32_t e = 0; e < f.count; ++e) {
+            const std::size_t off = f.offset + e * es;
+            if (is_real(f.datatype)) {
+                std::vector<double> sum(group_count, 0.0);
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (group[i] != kNoGroup) {
+                        sum[group[i]] += value_as_double(src + i * step + off, f.datatype);
+                    }
+                }
+                for (std::uint32_t g = 0; g < group_count; ++g) {
+                    const double mean = sum[g] / members[g];
+                    if (f.datatype == Field::FLOAT32) {
+                        const auto v = static_cast<float>(mean);
+                        std::memcpy(dst + g * step + off, &v, 4);
+                    } else {
+                        std::memcpy(dst + g * step + off, &mean, 8);
+                    }
+                }
+                continue;
+            }
+            // Integer fields (labels, ids, classes): the most frequent value, ties to the smallest.
+            // Sort (group, value) pairs and scan the runs.
+            std::vector<std::pair<std::uint32_t, double>> votes;
+            votes.reserve(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                if (group[i] != kNoGroup) {
+                    votes.emplace_back(group[i], value_as_double(src + i * step + off, f.datatype));
+                }
+            }
+            std::sort(votes.begin(), votes.end());
+            for (std::size_t r = 0; r < votes.size();) {
+                const std::uint32_t g = votes[r].first;
+                std::size_t best = 0;
+                double best_value = 0;
+                while (r < votes.size() && votes[r].first == g) {
+                    std::size_t run = r;
+                    while (run < votes.size() && votes[run] == votes[r]) {
+                        ++run;
+                    }
+                    if (run - r > best) {  // ascending values: ties keep the smallest
+                        best = run - r;
+                        best_value = votes[r].second;
+                    }
+                    r = run;
+                }
+                store_integer(best_value, f.datatype, dst + g * step + off);
+            }
+        }
+    }
+    update_is_dense(out);
+    return out;
+}
+
+}  // namespace pc::io

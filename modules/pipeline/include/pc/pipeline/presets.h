@@ -1,0 +1,41 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <pc/filters/color_filter.h>
+#include <pc/filters/crop.h>
+#include <pc/filters/knn_outlier.h>
+#include <pc/filters/voxel_downsample.h>
+#include <pc/segmentation/dbscan.h>
+#include <pc/segmentation/recursive_split.h>
+
+namespace pc::pipeline {
+
+/// Every parameter of the counting chain (../shared/METHOD.md), step by step.
+/// A step whose optional is empty is skipped.
+struct ChainParams {
+    std::optional<filters::ColorFilterParams> color;
+    std::optional<filters::CropParams> crop;
+    std::optional<filters::VoxelParams> voxel;
+    std::optional<filters::KnnOutlierParams> knn;
+    segmentation::DbscanParams dbscan;
+    bool eps_auto = false;  ///< estimate dbscan.eps from the cloud (estimate_eps)
+    std::optional<segmentation::RecursiveSplitParams> split;
+    std::uint32_t count_min_points = 1;  ///< clusters with fewer points are not counted
+};
+
+/// The preset names, in the order --help lists them.
+[[nodiscard]] const std::vector<std::string>& preset_names();
+
+/// The named parameter set; throws pc::InvalidArgument for an unknown name.
+///  - paper-dense: the paper's dense setting (sections 2.3-2.5): eps 0.015, paper split rule
+///  - paper-sparse: the paper's degraded-mask setting: eps 0.030, split only above 5x median volume
+///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,
+///    script split rule, count clusters with >= 40 points)
+[[nodiscard]] ChainParams preset(std::string_view name);
+
+}  // namespace pc::pipeline

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <pc/io/blob.h>
+#include <pc/pipeline/presets.h>
+#include <pc/segmentation/cluster_summary.h>
+
+namespace pc::pipeline {
+
+/// One chain step applied to a full cloud: every field it does not touch passes through.
+/// `note` says what the step did, for -v.
+struct Step {
+    io::Blob blob;
+    std::string note;
+};
+
+[[nodiscard]] Step apply_color_filter(const io::Blob& in, const filters::ColorFilterParams& p);
+[[nodiscard]] Step apply_crop(const io::Blob& in, const filters::CropParams& p);
+/// One point per occupied voxel (io::aggregate: centroid, mean colour, majority integer fields).
+[[nodiscard]] Step apply_voxel(const io::Blob& in, const filters::VoxelParams& p);
+
+/// Options of the kNN outlier step beyond the algorithm's Params.
+struct KnnOutput {
+    std::string mark_field;  ///< if set: write 0/1 (1 = outlier) to this U 4 field, drop nothing
+    bool invert = false;     ///< keep only the outliers
+};
+[[nodiscard]] Step apply_knn_outlier(const io::Blob& in,
+                                     const filters::KnnOutlierParams& p,
+                                     const KnnOutput& out = {});
+
+/// Writes `label` (U 4). With eps_auto, eps is estimated first and reported in the note.
+[[nodiscard]] Step apply_dbscan(const io::Blob& in,
+                                segmentation::DbscanParams p,
+                                bool eps_auto = false);
+/// Reads and rewrites `label`.
+[[nodiscard]] Step apply_recursive_split(const io::Blob& in,
+                                         const segmentation::RecursiveSplitParams& p);
+
+/// The whole chain, colour filter to recursive split; returns the labelled cloud.
+struct ChainResult {
+    io::Blob labelled;
+    std::vector<std::string> notes;  ///< one per step
+};
+[[nodiscard]] ChainResult run_chain(const io::Blob& in, const ChainParams& p);
+
+/// The count report of a labelled cloud, as JSON text (pc_count, pc_fruitcount):
+/// count, noise_points, small_clusters, clusters [{id, points, centroid, aabb {min, max}}],
+/// and with `gt`: gt, error (count − gt), recovery (count / gt).
+[[nodiscard]] std::string count_report(const segmentation::ClusterSummary& s,
+                                       std::optional<double> gt);
+
+}  // namespace pc::pipeline

@@ -1,0 +1,144 @@
+#include <pc/pipeline/steps.h>
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+#include <pc/core/error.h>
+#include <pc/io/info.h>
+#include <pc/io/points.h>
+
+namespace pc::pipeline {
+
+namespace {
+
+std::string kept_note(const char* step, std::size_t kept, std::size_t total) {
+    return std::string(step) + ": kept " + std::to_string(kept) + " of " + std::to_string(total) +
+           " points";
+}
+
+}  // namespace
+
+Step apply_color_filter(const io::Blob& in, const filters::ColorFilterParams& p) {
+    p.validate();
+    if (in.size() > 0 && io::colour_fields(in).empty()) {
+        throw IoError("cloud has no colour (looked for rgb, rgba, red green blue, r g b)");
+    }
+    const auto kept = in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
+    return {io::select(in, kept), kept_note("color_filter", kept.size(), in.size())};
+}
+
+Step apply_crop(const io::Blob& in, const filters::CropParams& p) {
+    const auto kept = filters::crop(io::xyz(in), p).kept;
+    return {io::select(in, kept), kept_note("crop", kept.size(), in.size())};
+}
+
+Step apply_voxel(const io::Blob& in, const filters::VoxelParams& p) {
+    const filters::VoxelResult v = filters::voxel_downsample(io::xyz(in), p);
+    return {io::aggregate(in, v.voxel, v.count),
+            "voxel: " + std::to_string(in.size()) + " points into " + std::to_string(v.count) +
+                " voxels of " + format_number(p.leaf)};
+}
+
+Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
+    const filters::KnnOutlierResult r = filters::knn_outlier(io::xyz(in), p);
+    std::size_t outliers = 0;
+    for (auto f : r.outlier) {
+        outliers += f;
+    }
+    const std::string note = "knn_outlier: threshold " + format_number(r.threshold) + ", " +
+                             std::to_string(outliers) + " of " + std::to_string(in.size()) +
+                             " points are outliers";
+    if (!o.mark_field.empty()) {
+        const std::vector<std::uint32_t> mark(r.outlier.begin(), r.outlier.end());
+        return {io::with_field(in, o.mark_field, mark), note};
+    }
+    Indices kept;
+    for (std::uint32_t i = 0; i < r.outlier.size(); ++i) {
+        if ((r.outlier[i] != 0) == o.invert) {
+            kept.push_back(i);
+        }
+    }
+    return {io::select(in, kept), note};
+}
+
+Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, bool eps_auto) {
+    const Cloud cloud = io::xyz(in);
+    std::string note;
+    if (eps_auto) {
+        p.eps = segmentation::estimate_eps(cloud, p.min_points);
+        note = "dbscan: eps auto = " + format_number(p.eps) + "; ";
+    }
+    const segmentation::DbscanResult r = segmentation::dbscan(cloud, p);
+    std::size_t noise = 0;
+    for (auto l : r.labels) {
+        noise += l == segmentation::kNoise;
+    }
+    note += "dbscan: " + std::to_string(r.cluster_count) + " clusters, " + std::to_string(noise) +
+            " noise points (eps " + format_number(p.eps) + ", min_points " +
+            std::to_string(p.min_points) + ")";
+    return {io::with_field(in, "label", r.labels), note};
+}
+
+Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSplitParams& p) {
+    const auto labels = io::labels(in, "label");
+    const segmentation::RecursiveSplitResult r =
+        segmentation::recursive_split(io::xyz(in), labels, p);
+    return {io::with_field(in, "label", r.labels),
+            "recursive_split: " + std::to_string(r.splits) + " splits, " +
+                std::to_string(r.cluster_count) + " clusters (thresholds: points > " +
+                format_number(r.size_threshold) + ", AABB volume > " +
+                format_number(r.volume_threshold) + ")"};
+}
+
+ChainResult run_chain(const io::Blob& in, const ChainParams& p) {
+    ChainResult out;
+    io::Blob cur = in;
+    const auto take = [&](Step s) {
+        cur = std::move(s.blob);
+        out.notes.push_back(std::move(s.note));
+    };
+    if (p.color) {
+        take(apply_color_filter(cur, *p.color));
+    }
+    if (p.crop) {
+        take(apply_crop(cur, *p.crop));
+    }
+    if (p.voxel) {
+        take(apply_voxel(cur, *p.voxel));
+    }
+    if (p.knn) {
+        take(apply_knn_outlier(cur, *p.knn));
+    }
+    take(apply_dbscan(cur, p.dbscan, p.eps_auto));
+    if (p.split) {
+        take(apply_recursive_split(cur, *p.split));
+    }
+    out.labelled = std::move(cur);
+    return out;
+}
+
+std::string count_report(const segmentation::ClusterSummary& s, std::optional<double> gt) {
+    using nlohmann::ordered_json;
+    ordered_json j;
+    j["count"] = s.clusters.size();
+    if (gt) {
+        j["gt"] = *gt;
+        j["error"] = static_cast<double>(s.clusters.size()) - *gt;
+        j["recovery"] = *gt > 0 ? ordered_json(static_cast<double>(s.clusters.size()) / *gt)
+                                : ordered_json(nullptr);
+    }
+    j["noise_points"] = s.noise_points;
+    j["small_clusters"] = s.small_clusters;
+    ordered_json cl = ordered_json::array();
+    for (const auto& c : s.clusters) {
+        cl.push_back({{"id", c.id},
+                      {"points", c.points},
+                      {"centroid", c.centroid},
+                      {"aabb", {{"min", c.min}, {"max", c.max}}}});
+    }
+    j["clusters"] = cl;
+    return j.dump(1) + "\n";
+}
+
+}  // namespace pc::pipeline

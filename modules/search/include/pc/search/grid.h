@@ -1,0 +1,79 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <pc/core/cloud.h>
+
+namespace pc::search {
+
+/// A uniform grid over the finite points of a cloud, for exact radius and k-nearest-neighbour
+/// queries. Points are stored sorted by cell, so a cell's points are contiguous in memory.
+/// Distances are computed in double from the float coordinates: d² = Σ (a_i − b_i)².
+class Grid {
+public:
+    /// Builds the grid with cubic cells of side `cell` (> 0), enlarged if an axis would need more
+    /// than 2^21 cells (queries stay exact). Non-finite points are left out.
+    Grid(const Cloud& cloud, double cell);
+
+    /// A cell side giving a few points per occupied cell, for kNN queries (adapts to surfaces).
+    [[nodiscard]] static double suggest_cell(const Cloud& cloud);
+
+    /// Calls f(index, d²) for every point with d² <= radius² (itself included); radius <= cell().
+    template <class F>
+    void for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const;
+
+    /// The k nearest points to cloud point `self` other than itself: indices and d², ascending
+    /// by (d², index). Fewer than k when the cloud has fewer other finite points; none when
+    /// `self` is not finite.
+    void knn(std::uint32_t self, std::size_t k, std::vector<std::uint32_t>& idx,
+             std::vector<double>& d2) const;
+
+    [[nodiscard]] double cell() const { return cell_; }
+    [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
+
+private:
+    struct Cell {
+        std::uint64_t key;
+        std::uint32_t begin, end;
+    };
+    [[nodiscard]] std::int64_t coord(float v, int axis) const;
+    [[nodiscard]] static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z);
+    [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const;
+
+    double cell_ = 1;
+    double origin_[3] = {0, 0, 0};
+    std::vector<float> xyz_;              // sorted by cell, 3 floats per point
+    std::vector<std::uint32_t> order_;    // original index of each sorted point
+    std::vector<Cell> cells_;
+    std::vector<std::uint32_t> table_;    // open addressing: cell index + 1, 0 = empty
+    std::uint64_t mask_ = 0;
+    const Cloud* cloud_ = nullptr;
+};
+
+template <class F>
+void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
+    const double r2 = radius * radius;
+    const std::int64_t cx = coord(q.x, 0), cy = coord(q.y, 1), cz = coord(q.z, 2);
+    for (std::int64_t dz = -1; dz <= 1; ++dz) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+            for (std::int64_t dx = -1; dx <= 1; ++dx) {
+                const Cell* c = find(cx + dx, cy + dy, cz + dz);
+                if (c == nullptr) {
+                    continue;
+                }
+                for (std::uint32_t s = c->begin; s < c->end; ++s) {
+                    const double ex = double{xyz_[3 * s]} - q.x;
+                    const double ey = double{xyz_[3 * s + 1]} - q.y;
+                    const double ez = double{xyz_[3 * s + 2]} - q.z;
+                    const double d2 = ex * ex + ey * ey + ez * ez;
+                    if (d2 <= r2) {
+                        f(order_[s], d2);
+                    }
+                }
+            }
+        }
+    }
+}
+
+}  // namespace pc::search

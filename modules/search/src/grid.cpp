@@ -1,0 +1,280 @@
+#include <pc/search/grid.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <pc/core/error.h>
+
+namespace pc::search {
+
+namespace {
+
+constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis in a 63-bit key
+
+/// LSD radix sort of (key, index) pairs, 11 bits per pass, skipping passes where all digits agree.
+void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx) {
+    const std::size_t n = keys.size();
+    std::vector<std::uint64_t> k2(n);
+    std::vector<std::uint32_t> i2(n);
+    std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
+    for (auto k : keys) {
+        all_or |= k;
+        all_and &= k;
+    }
+    const std::uint64_t varying = all_or ^ all_and;
+    for (int shift = 0; shift < 64; shift += 11) {
+        if (((varying >> shift) & 0x7ff) == 0) {
+            continue;
+        }
+        std::size_t count[2049] = {};
+        for (auto k : keys) {
+            ++count[((k >> shift) & 0x7ff) + 1];
+        }
+        for (int b = 0; b < 2048; ++b) {
+            count[b + 1] += count[b];
+        }
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::size_t at = count[(keys[i] >> shift) & 0x7ff]++;
+            k2[at] = keys[i];
+            i2[at] = idx[i];
+        }
+        keys.swap(k2);
+        idx.swap(i2);
+    }
+}
+
+struct Bounds {
+    double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    std::size_t n = 0;
+};
+
+Bounds finite_bounds(const Cloud& cloud) {
+    Bounds b;
+    for (int a = 0; a < 3; ++a) {
+        b.lo[a] = std::numeric_limits<double>::infinity();
+        b.hi[a] = -b.lo[a];
+    }
+    for (const auto& p : cloud.points) {
+        if (!is_finite(p)) {
+            continue;
+        }
+        ++b.n;
+        const double v[3] = {p.x, p.y, p.z};
+        for (int a = 0; a < 3; ++a) {
+            b.lo[a] = std::min(b.lo[a], v[a]);
+            b.hi[a] = std::max(b.hi[a], v[a]);
+        }
+    }
+    return b;
+}
+
+/// Mean points per occupied cell of side `cell` over every `stride`-th finite point.
+double occupancy(const Cloud& cloud, const Bounds& b, double cell, std::size_t stride) {
+    std::vector<std::uint64_t> keys;
+    std::size_t seen = 0;
+    for (const auto& p : cloud.points) {
+        if (!is_finite(p) || (seen++ % stride) != 0) {
+            continue;
+        }
+        const double v[3] = {p.x, p.y, p.z};
+        std::uint64_t key = 0;
+        for (int a = 0; a < 3; ++a) {
+            const auto c = static_cast<std::uint64_t>(
+                std::min<double>(std::floor((v[a] - b.lo[a]) / cell), kAxisCells - 1));
+            key = (key << 21) | c;
+        }
+        keys.push_back(key);
+    }
+    std::sort(keys.begin(), keys.end());
+    const auto unique = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
+    return unique > 0 ? static_cast<double>(keys.size()) / unique : 1.0;
+}
+
+}  // namespace
+
+double Grid::suggest_cell(const Cloud& cloud) {
+    constexpr double kTarget = 4.0;  // points per occupied cell in the full cloud
+    const Bounds b = finite_bounds(cloud);
+    if (b.n < 2) {
+        return 1.0;
+    }
+    double extent = 0;
+    for (int a = 0; a < 3; ++a) {
+        extent = std::max(extent, b.hi[a] - b.lo[a]);
+    }
+    if (!(extent > 0)) {
+        return 1.0;  // all points coincide
+    }
+    const std::size_t stride = std::max<std::size_t>(1, b.n / 200000);
+    const double s = static_cast<double>(stride);
+    // Cells small enough that every axis fits, then measure how occupancy grows with the cell
+    // side (2^d for a d-dimensional point set) and solve for the target occupancy.
+    double cell = std::max(extent / static_cast<double>(kAxisCells - 2),
+                           extent / std::cbrt(static_cast<double>(b.n)));
+    for (int iter = 0; iter < 3; ++iter) {
+        const double a1 = occupancy(cloud, b, cell, stride) * s;
+        const double a2 = occupancy(cloud, b, 2 * cell, stride) * s;
+        const double d = std::clamp(std::log2(std::max(a2 / a1, 1.0)), 1.0, 3.0);
+        const double next = cell * std::pow(kTarget / a1, 1.0 / d);
+        const double floor_cell = extent / static_cast<double>(kAxisCells - 2);
+        cell = std::max(next, floor_cell);
+        if (a1 > kTarget / 2 && a1 < kTarget * 2) {
+            break;
+        }
+    }
+    return cell;
+}
+
+Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
+    if (!(cell > 0) || !std::isfinite(cell)) {
+        throw InvalidArgument("grid: cell must be > 0, got " + format_number(cell));
+    }
+    const Bounds b = finite_bounds(cloud);
+    for (int a = 0; a < 3; ++a) {
+        origin_[a] = b.n ? b.lo[a] : 0.0;
+        // Keep every axis within 21 bits of cells: a larger cell is still exact, only slower.
+        if (b.n) {
+            cell_ = std::max(cell_, (b.hi[a] - b.lo[a]) / static_cast<double>(kAxisCells - 4));
+        }
+    }
+    std::vector<std::uint64_t> keys;
+    keys.reserve(b.n);
+    order_.reserve(b.n);
+    for (std::uint32_t i = 0; i < cloud.size(); ++i) {
+        const auto& p = cloud[i];
+        if (!is_finite(p)) {
+            continue;
+        }
+        keys.push_back(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+        order_.push_back(i);
+    }
+    radix_sort(keys, order_);
+    xyz_.resize(3 * order_.size());
+    for (std::size_t s = 0; s < order_.size(); ++s) {
+        const auto& p = cloud[order_[s]];
+        xyz_[3 * s] = p.x;
+        xyz_[3 * s + 1] = p.y;
+        xyz_[3 * s + 2] = p.z;
+        if (s == 0 || keys[s] != keys[s - 1]) {
+            cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
+        }
+        cells_.back().end = static_cast<std::uint32_t>(s + 1);
+    }
+    std::size_t cap = 16;
+    while (cap < 2 * cells_.size()) {
+        cap *= 2;
+    }
+    table_.assign(cap, 0);
+    mask_ = cap - 1;
+    for (std::uint32_t c = 0; c < cells_.size(); ++c) {
+        std::uint64_t h = (cells_[c].key * 0x9E3779B97F4A7C15ull) >> 20;
+        while (table_[h & mask_] != 0) {
+            ++h;
+        }
+        table_[h & mask_] = c + 1;
+    }
+}
+
+std::int64_t Grid::coord(float v, int axis) const {
+    return static_cast<std::int64_t>(std::floor((double{v} - origin_[axis]) / cell_));
+}
+
+std::uint64_t Grid::pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) |
+           static_cast<std::uint64_t>(z);
+}
+
+const Grid::Cell* Grid::find(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    if (x < 0 || y < 0 || z < 0 || x >= kAxisCells || y >= kAxisCells || z >= kAxisCells) {
+        return nullptr;
+    }
+    const std::uint64_t key = pack(x, y, z);
+    for (std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> 20;; ++h) {
+        const std::uint32_t slot = table_[h & mask_];
+        if (slot == 0) {
+            return nullptr;
+        }
+        if (cells_[slot - 1].key == key) {
+            return &cells_[slot - 1];
+        }
+    }
+}
+
+void Grid::knn(std::uint32_t self,
+               std::size_t k,
+               std::vector<std::uint32_t>& idx,
+               std::vector<double>& d2) const {
+    idx.clear();
+    d2.clear();
+    if (k == 0) {
+        return;
+    }
+    const auto& q = (*cloud_)[self];
+    if (!is_finite(q)) {
+        return;  // not in the grid
+    }
+    const std::int64_t c[3] = {coord(q.x, 0), coord(q.y, 1), coord(q.z, 2)};
+    // Distance from q to the nearest face of its own cell: points in ring r+1 are at least
+    // r * cell + margin away.
+    double margin = std::numeric_limits<double>::infinity();
+    const double v[3] = {q.x, q.y, q.z};
+    for (int a = 0; a < 3; ++a) {
+        const double lo = origin_[a] + static_cast<double>(c[a]) * cell_;
+        margin = std::min({margin, v[a] - lo, lo + cell_ - v[a]});
+    }
+    margin = std::max(margin, 0.0);
+    const auto consider = [&](const Cell& cell) {
+        for (std::uint32_t s = cell.begin; s < cell.end; ++s) {
+            const std::uint32_t i = order_[s];
+            if (i == self) {
+                continue;
+            }
+            const double ex = double{xyz_[3 * s]} - q.x;
+            const double ey = double{xyz_[3 * s + 1]} - q.y;
+            const double ez = double{xyz_[3 * s + 2]} - q.z;
+            const double dd = ex * ex + ey * ey + ez * ez;
+            if (idx.size() == k && (dd > d2.back() || (dd == d2.back() && i > idx.back()))) {
+                continue;
+            }
+            std::size_t at = idx.size() == k ? k - 1 : idx.size();
+            if (idx.size() < k) {
+                idx.push_back(0);
+                d2.push_back(0);
+            }
+            while (at > 0 && (d2[at - 1] > dd || (d2[at - 1] == dd && idx[at - 1] > i))) {
+                idx[at] = idx[at - 1];
+                d2[at] = d2[at - 1];
+                --at;
+            }
+            idx[at] = i;
+            d2[at] = dd;
+        }
+    };
+    const std::size_t others = order_.size() - 1;
+    for (std::int64_t r = 0;; ++r) {
+        for (std::int64_t dz = -r; dz <= r; ++dz) {
+            for (std::int64_t dy = -r; dy <= r; ++dy) {
+                const bool inner = std::abs(dz) < r && std::abs(dy) < r;
+                for (std::int64_t dx = -r; dx <= r; dx += (inner ? 2 * r : 1)) {
+                    if (const Cell* cell = find(c[0] + dx, c[1] + dy, c[2] + dz)) {
+                        consider(*cell);
+                    }
+                    if (r == 0) {
+                        break;
+                    }
+                }
+            }
+        }
+        // Unvisited points are at least `reach` away; strict so that index tie-breaks are exact.
+        const double reach = static_cast<double>(r) * cell_ + margin;
+        if (idx.size() == k && d2.back() < reach * reach) {
+            return;
+        }
+        if (idx.size() == others) {
+            return;  // fewer than k other points, all seen
+        }
+    }
+}
+
+}  // namespace pc::search

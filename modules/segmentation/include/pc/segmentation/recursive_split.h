@@ -1,0 +1,61 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <pc/core/cloud.h>
+
+namespace pc::segmentation {
+
+/// Which clusters define the "median cluster" the split thresholds are relative to.
+enum class SplitRule {
+    kPaper,   ///< medians of point count and AABB volume over all clusters (paper 2.3.3)
+    kScript,  ///< the author script: size median over clusters with > median_min_points points;
+              ///< volume median over clusters within ±size_band of that median size
+};
+
+/// Parses "paper" or "script"; throws pc::InvalidArgument.
+[[nodiscard]] SplitRule parse_split_rule(const std::string& text);
+
+/// Parameters of recursive_split(). A cluster is split iff
+/// points > size_factor × median size AND AABB volume > volume_factor × median volume,
+/// with both medians taken once, from the input clusters (thresholds fixed from the first pass).
+struct RecursiveSplitParams {
+    SplitRule rule = SplitRule::kPaper;
+    double size_factor = 1.0;    ///< point-count factor (strict >), >= 0
+    double volume_factor = 2.0;  ///< AABB-volume factor (strict >), >= 0; paper-sparse uses 5
+    std::uint32_t median_min_points = 20;  ///< script rule: size median over clusters with MORE points
+    double size_band = 0.2;      ///< script rule: volume median over clusters with |n − m| <= band·m
+    std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise (0)
+    std::uint32_t restarts = 6;  ///< k-means++ restarts per split (k = 2)
+    std::uint64_t seed = 0;      ///< k-means seed; each cluster's engine also mixes its first index
+
+    void validate() const;
+};
+
+struct RecursiveSplitResult {
+    std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
+    std::uint32_t cluster_count = 0;
+    std::uint32_t splits = 0;       ///< successful k = 2 splits
+    double size_threshold = 0;      ///< points above which a cluster may split
+    double volume_threshold = 0;    ///< AABB volume above which a cluster may split
+};
+
+/// Recursive geometric splitting (paper 2.3.3): clusters violating both thresholds are split by
+/// k-means (k = 2) on x, y, z; both halves are re-examined; no depth limit (a split that leaves a
+/// half empty stops). Label 0 stays noise; non-finite points become noise. Numbering: decreasing
+/// size, ties by smallest point index. Deterministic for a given seed.
+[[nodiscard]] RecursiveSplitResult recursive_split(const Cloud& cloud,
+                                                   std::span<const std::uint32_t> labels,
+                                                   const RecursiveSplitParams& params);
+
+/// Renumbers `labels` (0 = noise kept) as 1..N by decreasing cluster size, ties by smallest point
+/// index; clusters below `min_size` points become 0. Returns N.
+std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t min_size = 0);
+
+/// Median of `v` (mean of the two middle values for an even count); NaN when empty. Reorders v.
+[[nodiscard]] double median(std::vector<double>& v);
+
+}  // namespace pc::segmentation

@@ -1,0 +1,196 @@
+#include <pc/segmentation/recursive_split.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <pc/core/error.h>
+#include <pc/segmentation/kmeans.h>
+
+namespace pc::segmentation {
+
+namespace {
+
+double aabb_volume(const Cloud& cloud, const std::vector<std::uint32_t>& members) {
+    float lo[3] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                   std::numeric_limits<float>::max()};
+    float hi[3] = {-lo[0], -lo[1], -lo[2]};
+    for (std::uint32_t i : members) {
+        const float v[3] = {cloud[i].x, cloud[i].y, cloud[i].z};
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], v[a]);
+            hi[a] = std::max(hi[a], v[a]);
+        }
+    }
+    if (members.empty()) {
+        return 0;
+    }
+    return (double{hi[0]} - lo[0]) * (double{hi[1]} - lo[1]) * (double{hi[2]} - lo[2]);
+}
+
+}  // namespace
+
+SplitRule parse_split_rule(const std::string& text) {
+    if (text == "paper") {
+        return SplitRule::kPaper;
+    }
+    if (text == "script") {
+        return SplitRule::kScript;
+    }
+    throw InvalidArgument("--rule: expected paper or script, got '" + text + "'");
+}
+
+void RecursiveSplitParams::validate() const {
+    if (!(size_factor >= 0) || !(volume_factor >= 0)) {
+        throw InvalidArgument("recursive_split: size_factor and volume_factor must be >= 0, got " +
+                              format_number(size_factor) + " and " + format_number(volume_factor));
+    }
+    if (!(size_band >= 0)) {
+        throw InvalidArgument("recursive_split: size_band must be >= 0, got " +
+                              format_number(size_band));
+    }
+    if (restarts < 1) {
+        throw InvalidArgument("recursive_split: restarts must be >= 1, got " +
+                              std::to_string(restarts));
+    }
+}
+
+double median(std::vector<double>& v) {
+    if (v.empty()) {
+        return std::nan("");
+    }
+    const std::size_t mid = v.size() / 2;
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
+    const double hi = v[mid];
+    if (v.size() % 2 == 1) {
+        return hi;
+    }
+    const double lo = *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid));
+    return (lo + hi) / 2;
+}
+
+std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t min_size) {
+    std::uint32_t max_label = 0;
+    for (std::uint32_t l : labels) {
+        max_label = std::max(max_label, l);
+    }
+    std::vector<std::uint32_t> size(std::size_t{max_label} + 1, 0);
+    std::vector<std::uint32_t> first(std::size_t{max_label} + 1, std::numeric_limits<std::uint32_t>::max());
+    for (std::uint32_t i = 0; i < labels.size(); ++i) {
+        ++size[labels[i]];
+        first[labels[i]] = std::min(first[labels[i]], i);
+    }
+    std::vector<std::uint32_t> ids;
+    for (std::uint32_t l = 1; l <= max_label; ++l) {
+        if (size[l] > 0 && size[l] >= min_size) {
+            ids.push_back(l);
+        }
+    }
+    std::sort(ids.begin(), ids.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return size[a] != size[b] ? size[a] > size[b] : first[a] < first[b];
+    });
+    std::vector<std::uint32_t> map(std::size_t{max_label} + 1, 0);
+    for (std::uint32_t k = 0; k < ids.size(); ++k) {
+        map[ids[k]] = k + 1;
+    }
+    for (auto& l : labels) {
+        l = map[l];
+    }
+    return static_cast<std::uint32_t>(ids.size());
+}
+
+RecursiveSplitResult recursive_split(const Cloud& cloud,
+                                     std::span<const std::uint32_t> labels,
+                                     const RecursiveSplitParams& params) {
+    params.validate();
+    const std::size_t n = cloud.size();
+    if (labels.size() != n) {
+        throw InvalidArgument("recursive_split: labels must be one per point (" +
+                              std::to_string(n) + "), got " + std::to_string(labels.size()));
+    }
+    // Gather clusters (finite members only).
+    std::uint32_t max_label = 0;
+    for (std::uint32_t l : labels) {
+        max_label = std::max(max_label, l);
+    }
+    std::vector<std::vector<std::uint32_t>> clusters(std::size_t{max_label} + 1);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (labels[i] != 0 && is_finite(cloud[i])) {
+            clusters[labels[i]].push_back(i);
+        }
+    }
+    std::vector<std::vector<std::uint32_t>> queue;
+    for (auto& c : clusters) {
+        if (!c.empty()) {
+            queue.push_back(std::move(c));
+        }
+    }
+    RecursiveSplitResult r;
+    // Thresholds, once, from the input clusters.
+    std::vector<double> sizes, volumes;
+    for (const auto& c : queue) {
+        sizes.push_back(static_cast<double>(c.size()));
+        volumes.push_back(aabb_volume(cloud, c));
+    }
+    double med_size = std::nan(""), med_volume = std::nan("");
+    if (params.rule == SplitRule::kPaper) {
+        std::vector<double> s = sizes, v = volumes;
+        med_size = median(s);
+        med_volume = median(v);
+    } else {
+        std::vector<double> big;
+        for (double s : sizes) {
+            if (s > params.median_min_points) {
+                big.push_back(s);
+            }
+        }
+        med_size = median(big);
+        std::vector<double> band;
+        for (std::size_t k = 0; k < sizes.size(); ++k) {
+            if (std::abs(sizes[k] - med_size) <= params.size_band * med_size) {
+                band.push_back(volumes[k]);
+            }
+        }
+        med_volume = median(band);
+    }
+    r.size_threshold = params.size_factor * med_size;
+    r.volume_threshold = params.volume_factor * med_volume;
+    const bool can_split = std::isfinite(r.size_threshold) && std::isfinite(r.volume_threshold);
+
+    std::vector<std::uint32_t> out(n, 0);
+    std::uint32_t next_label = 0;
+    std::vector<pcl::PointXYZ> pts;
+    while (!queue.empty()) {
+        std::vector<std::uint32_t> c = std::move(queue.back());
+        queue.pop_back();
+        const bool violates = can_split && static_cast<double>(c.size()) > r.size_threshold &&
+                              aabb_volume(cloud, c) > r.volume_threshold && c.size() >= 2;
+        if (violates) {
+            pts.clear();
+            for (std::uint32_t i : c) {
+                pts.push_back(cloud[i]);
+            }
+            const std::uint64_t mix = params.seed ^ (0x9E3779B97F4A7C15ull * (c.front() + 1));
+            const KMeansResult km = kmeans(pts, {.k = 2, .restarts = params.restarts, .seed = mix});
+            std::vector<std::uint32_t> a, b;
+            for (std::size_t k = 0; k < c.size(); ++k) {
+                (km.assignment[k] == 0 ? a : b).push_back(c[k]);
+            }
+            if (!a.empty() && !b.empty()) {
+                ++r.splits;
+                queue.push_back(std::move(a));
+                queue.push_back(std::move(b));
+                continue;
+            }
+        }
+        ++next_label;
+        for (std::uint32_t i : c) {
+            out[i] = next_label;
+        }
+    }
+    r.cluster_count = renumber_by_size(out, params.min_cluster_size);
+    r.labels = std::move(out);
+    return r;
+}
+
+}  // namespace pc::segmentation

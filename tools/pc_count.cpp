@@ -1,0 +1,30 @@
+// pc_count: report the clusters in `label`.
+#include <iostream>
+
+#include <pc/cli/tool.h>
+#include <pc/io/points.h>
+#include <pc/pipeline/steps.h>
+
+namespace pl = pc::pipeline;
+
+int main(int argc, char** argv) {
+    std::uint32_t min_points = 1;
+    std::optional<double> gt;
+    bool plain = false;
+    pc::cli::Tool tool("pc_count", "count the clusters in `label` (0 = noise) and report them",
+                       pc::cli::Output::kText);
+    tool.option("min-cluster-size", &min_points, "count only clusters with at least this many points");
+    tool.option("gt", &gt, "ground-truth count: adds error (count - gt) and recovery (count / gt)");
+    tool.flag("plain", &plain, "print only the count");
+    tool.presets(pl::preset_names(),
+                 [&](const std::string& name) { min_points = pl::preset(name).count_min_points; });
+    tool.epilog("\nAn empty cloud counts 0. See docs/tools/pc_count.md.\n");
+    return tool.run(argc, argv, [&](pc::cli::Streams& io) {
+        const pc::io::Blob blob = io.read();
+        const auto labels = blob.size() ? pc::io::labels(blob, "label") : std::vector<std::uint32_t>{};
+        const auto summary =
+            pc::segmentation::summarize_clusters(pc::io::xyz(blob), labels, min_points);
+        io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
+                            : pl::count_report(summary, gt));
+    });
+}

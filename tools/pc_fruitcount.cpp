@@ -1,0 +1,101 @@
+// pc_fruitcount: the whole counting chain in one process (colour filter, crop, voxel, kNN outlier,
+// DBSCAN, recursive split, count), with the same labels as the piped chain.
+#include <pc/cli/tool.h>
+#include <pc/core/error.h>
+#include <pc/io/points.h>
+#include <pc/pipeline/steps.h>
+
+namespace pl = pc::pipeline;
+namespace seg = pc::segmentation;
+
+int main(int argc, char** argv) {
+    // Each step's Params live here, bound to options; the preset fills them first.
+    pl::ChainParams chain = pl::preset("paper-dense");
+    pc::filters::ColorFilterParams color = *chain.color;
+    pc::filters::CropParams crop;
+    pc::filters::VoxelParams voxel;
+    pc::filters::KnnOutlierParams knn = *chain.knn;
+    seg::RecursiveSplitParams split = *chain.split;
+    bool no_color = false, no_knn = false, no_split = false;
+    std::optional<double> gt;
+    bool plain = false;
+    std::string cloud_out;
+
+    pc::cli::Tool tool("pc_fruitcount",
+                       "count fruit: colour filter, crop, voxel, kNN outlier, DBSCAN, recursive "
+                       "split and count in one process (default preset: paper-dense)",
+                       pc::cli::Output::kText);
+    tool.presets(pl::preset_names(), [&](const std::string& name) {
+        chain = pl::preset(name);
+        color = chain.color.value_or(color);
+        crop = chain.crop.value_or(crop);
+        voxel = chain.voxel.value_or(voxel);
+        knn = chain.knn.value_or(knn);
+        split = chain.split.value_or(split);
+    });
+    tool.option("min-mean", &color.min_mean, "colour: keep iff (R+G+B)/3 > this (0..1)");
+    tool.option("min-value", &color.min_value, "colour: keep iff max(R,G,B) > this");
+    tool.flag("no-color", &no_color, "skip the colour filter");
+    tool.option("crop-min", "off", [&](const std::string& s) {
+        crop.min = pc::cli::parse_triple("crop-min", s);
+        chain.crop = crop;
+    }, "crop: lower corner x,y,z, included (enables the crop step)");
+    tool.option("crop-max", "off", [&](const std::string& s) {
+        crop.max = pc::cli::parse_triple("crop-max", s);
+        chain.crop = crop;
+    }, "crop: upper corner x,y,z, included (enables the crop step)");
+    tool.option("leaf", "off", [&](const std::string& s) {
+        voxel.leaf = pc::cli::parse_double("leaf", s);
+        chain.voxel = voxel;
+    }, "voxel: leaf size (enables the voxel step)");
+    tool.option("k", &knn.k, "kNN outlier: neighbours, the point itself NOT counted");
+    tool.option("drop-percentile", &knn.drop_percentile, "kNN outlier: drop mean distance >= P(100-P)");
+    tool.option("std-mul", &knn.std_mul, "kNN outlier: instead drop mean distance > mean + M sigma");
+    tool.flag("no-knn", &no_knn, "skip the kNN outlier filter");
+    tool.option("eps", pc::format_number(chain.dbscan.eps), [&](const std::string& s) {
+        chain.eps_auto = s == "auto";
+        if (!chain.eps_auto) {
+            chain.dbscan.eps = pc::cli::parse_double("eps", s);
+        }
+    }, "DBSCAN: neighbour iff distance <= eps, or 'auto'");
+    tool.option("min-points", &chain.dbscan.min_points, "DBSCAN: core needs this many, itself included");
+    tool.option("rule", "paper", [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
+                "split: paper or script");
+    tool.option("size-factor", &split.size_factor, "split: points > this x median size");
+    tool.option("volume-factor", &split.volume_factor, "split: AABB volume > this x median volume");
+    tool.option("median-min-points", &split.median_min_points, "split (script): size median over clusters with more points");
+    tool.option("size-band", &split.size_band, "split (script): volume median band around the median size");
+    tool.option("min-cluster-size", &split.min_cluster_size, "split: final clusters below this become noise");
+    tool.option("restarts", &split.restarts, "split: k-means++ restarts");
+    tool.option("seed", &split.seed, "split: k-means seed");
+    tool.flag("no-split", &no_split, "skip the recursive split");
+    tool.option("count-min-points", &chain.count_min_points, "count clusters with at least this many points");
+    tool.option("gt", &gt, "ground-truth count: adds error and recovery to the report");
+    tool.flag("plain", &plain, "print only the count");
+    tool.option("cloud", &cloud_out, "also write the labelled cloud (binary PCD) to this file");
+    tool.epilog("\nSee docs/tools/pc_fruitcount.md for the presets and the steps.\n");
+    return tool.run(argc, argv, [&](pc::cli::Streams& io) {
+        chain.color = no_color ? std::nullopt : std::optional(color);
+        chain.knn = no_knn ? std::nullopt : std::optional(knn);
+        chain.split = no_split ? std::nullopt : std::optional(split);
+        if (chain.crop) {
+            chain.crop = crop;
+        }
+        if (chain.voxel) {
+            chain.voxel = voxel;
+        }
+        const pl::ChainResult r = pl::run_chain(io.read(), chain);
+        for (const auto& n : r.notes) {
+            io.note(n);
+        }
+        const auto labels = r.labelled.size() ? pc::io::labels(r.labelled, "label")
+                                              : std::vector<std::uint32_t>{};
+        const auto summary =
+            seg::summarize_clusters(pc::io::xyz(r.labelled), labels, chain.count_min_points);
+        if (!cloud_out.empty()) {
+            pc::cli::write_cloud_file(cloud_out, r.labelled);
+        }
+        io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
+                            : pl::count_report(summary, gt));
+    });
+}
