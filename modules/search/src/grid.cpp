@@ -91,6 +91,29 @@ double occupancy(const Cloud& cloud, const Bounds& b, double cell, std::size_t s
     return unique > 0 ? static_cast<double>(keys.size()) / unique : 1.0;
 }
 
+/// Inserts (dd, i) into the ascending (d², index) list of at most k entries.
+inline void insert_candidate(std::uint32_t i, double dd, std::size_t k,
+                             std::vector<std::uint32_t>& idx, std::vector<double>& d2) {
+    if (idx.size() == k && (dd > d2.back() || (dd == d2.back() && i > idx.back()))) {
+        return;
+    }
+    std::size_t at = idx.size() == k ? k - 1 : idx.size();
+    if (idx.size() < k) {
+        idx.push_back(0);
+        d2.push_back(0);
+    }
+    while (at > 0 && (d2[at - 1] > dd || (d2[at - 1] == dd && idx[at - 1] > i))) {
+        idx[at] = idx[at - 1];
+        d2[at] = d2[at - 1];
+        --at;
+    }
+    idx[at] = i;
+    d2[at] = dd;
+}
+
+constexpr std::int64_t kMaxRing = 2;       // rings searched before falling back to the tree
+constexpr std::uint32_t kLeafSize = 16;
+
 }  // namespace
 
 double Grid::suggest_cell(const Cloud& cloud) {
@@ -233,22 +256,7 @@ void Grid::knn(std::uint32_t self,
             const double ex = double{xyz_[3 * s]} - q.x;
             const double ey = double{xyz_[3 * s + 1]} - q.y;
             const double ez = double{xyz_[3 * s + 2]} - q.z;
-            const double dd = ex * ex + ey * ey + ez * ez;
-            if (idx.size() == k && (dd > d2.back() || (dd == d2.back() && i > idx.back()))) {
-                continue;
-            }
-            std::size_t at = idx.size() == k ? k - 1 : idx.size();
-            if (idx.size() < k) {
-                idx.push_back(0);
-                d2.push_back(0);
-            }
-            while (at > 0 && (d2[at - 1] > dd || (d2[at - 1] == dd && idx[at - 1] > i))) {
-                idx[at] = idx[at - 1];
-                d2[at] = d2[at - 1];
-                --at;
-            }
-            idx[at] = i;
-            d2[at] = dd;
+            insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
         }
     };
     const std::size_t others = order_.size() - 1;
@@ -274,6 +282,91 @@ void Grid::knn(std::uint32_t self,
         if (idx.size() == others) {
             return;  // fewer than k other points, all seen
         }
+        if (r == kMaxRing) {
+            tree_knn(q, self, k, idx, d2);  // an isolated point: let the tree bound the work
+            return;
+        }
+    }
+}
+
+void Grid::build_tree() const {
+    std::call_once(tree_once_, [this] {
+        const auto n = static_cast<std::uint32_t>(order_.size());
+        tree_perm_.resize(n);
+        for (std::uint32_t s = 0; s < n; ++s) {
+            tree_perm_[s] = s;
+        }
+        nodes_.reserve(2 * (n / kLeafSize + 1));
+        // Iterative build: median split on the widest axis of each range.
+        nodes_.push_back({0, n});
+        for (std::size_t at = 0; at < nodes_.size(); ++at) {
+            const std::uint32_t b = nodes_[at].begin, e = nodes_[at].end;
+            if (e - b <= kLeafSize) {
+                continue;
+            }
+            float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            for (std::uint32_t p = b; p < e; ++p) {
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], xyz_[3 * tree_perm_[p] + a]);
+                    hi[a] = std::max(hi[a], xyz_[3 * tree_perm_[p] + a]);
+                }
+            }
+            int axis = 0;
+            for (int a = 1; a < 3; ++a) {
+                if (hi[a] - lo[a] > hi[axis] - lo[axis]) {
+                    axis = a;
+                }
+            }
+            const std::uint32_t mid = b + (e - b) / 2;
+            std::nth_element(tree_perm_.begin() + b, tree_perm_.begin() + mid, tree_perm_.begin() + e,
+                             [&](std::uint32_t u, std::uint32_t v) {
+                                 return xyz_[3 * u + axis] < xyz_[3 * v + axis];
+                             });
+            nodes_[at].axis = static_cast<std::uint8_t>(axis);
+            nodes_[at].split = xyz_[3 * tree_perm_[mid] + axis];
+            nodes_[at].left = static_cast<std::int32_t>(nodes_.size());
+            nodes_.push_back({b, mid});
+            nodes_[at].right = static_cast<std::int32_t>(nodes_.size());
+            nodes_.push_back({mid, e});
+        }
+    });
+}
+
+void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
+                    std::vector<std::uint32_t>& idx, std::vector<double>& d2) const {
+    build_tree();
+    idx.clear();
+    d2.clear();
+    const double v[3] = {q.x, q.y, q.z};
+    // Depth-first, near side first; a far side is skipped only when its half-space is strictly
+    // farther than the current k-th distance (so index tie-breaks stay exact).
+    std::vector<std::pair<std::int32_t, double>> stack = {{0, 0.0}};
+    while (!stack.empty()) {
+        const auto [at, bound] = stack.back();
+        stack.pop_back();
+        if (idx.size() == k && bound > d2.back()) {
+            continue;
+        }
+        const Node& node = nodes_[at];
+        if (node.left < 0) {
+            for (std::uint32_t p = node.begin; p < node.end; ++p) {
+                const std::uint32_t s = tree_perm_[p];
+                const std::uint32_t i = order_[s];
+                if (i == self) {
+                    continue;
+                }
+                const double ex = double{xyz_[3 * s]} - v[0];
+                const double ey = double{xyz_[3 * s + 1]} - v[1];
+                const double ez = double{xyz_[3 * s + 2]} - v[2];
+                insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
+            }
+            continue;
+        }
+        const double diff = v[node.axis] - double{node.split};
+        const std::int32_t near = diff < 0 ? node.left : node.right;
+        const std::int32_t far = diff < 0 ? node.right : node.left;
+        stack.push_back({far, std::max(bound, diff * diff)});
+        stack.push_back({near, bound});
     }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <mutex>
 #include <vector>
 
 #include <pc/core/cloud.h>
@@ -12,6 +13,9 @@ namespace pc::search {
 /// Distances are computed in double from the float coordinates: d² = Σ (a_i − b_i)².
 class Grid {
 public:
+    Grid(const Grid&) = delete;
+    Grid& operator=(const Grid&) = delete;
+
     /// Builds the grid with cubic cells of side `cell` (> 0), enlarged if an axis would need more
     /// than 2^21 cells (queries stay exact). Non-finite points are left out.
     Grid(const Cloud& cloud, double cell);
@@ -40,6 +44,21 @@ private:
     [[nodiscard]] std::int64_t coord(float v, int axis) const;
     [[nodiscard]] static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z);
     [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const;
+    void build_tree() const;
+    void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
+                  std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
+
+    // A k-d tree over the sorted points, built on first need: the ring search bounds its work at
+    // a few rings, and points far from everything else (floaters) are answered by the tree.
+    struct Node {
+        std::uint32_t begin, end;  // range of tree_perm_
+        std::int32_t left = -1, right = -1;
+        std::uint8_t axis = 0;
+        float split = 0;
+    };
+    mutable std::once_flag tree_once_;
+    mutable std::vector<Node> nodes_;
+    mutable std::vector<std::uint32_t> tree_perm_;  // positions in xyz_
 
     double cell_ = 1;
     double origin_[3] = {0, 0, 0};

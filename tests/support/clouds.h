@@ -1,0 +1,66 @@
+#pragma once
+// Typed clouds with known structure for the algorithm tests.
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include <pc/core/cloud.h>
+
+namespace pc::test {
+
+/// n x n x n lattice with spacing `step` starting at `origin`.
+inline Cloud grid(const pcl::PointXYZ& origin, int n, float step) {
+    Cloud c;
+    for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+            for (int k = 0; k < n; ++k) {
+                c.push_back({origin.x + i * step, origin.y + j * step, origin.z + k * step});
+            }
+        }
+    }
+    return c;
+}
+
+/// n points uniform in the ball of `radius` around `centre` (rejection sampling, seeded).
+inline Cloud ball(const pcl::PointXYZ& centre, float radius, std::size_t n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-radius, radius);
+    Cloud c;
+    while (c.size() < n) {
+        const float x = u(rng), y = u(rng), z = u(rng);
+        if (x * x + y * y + z * z <= radius * radius) {
+            c.push_back({centre.x + x, centre.y + y, centre.z + z});
+        }
+    }
+    return c;
+}
+
+/// n points uniform in the cube [0, side)^3.
+inline Cloud uniform(std::size_t n, float side, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0, side);
+    Cloud c;
+    for (std::size_t i = 0; i < n; ++i) {
+        c.push_back({u(rng), u(rng), u(rng)});
+    }
+    return c;
+}
+
+inline Cloud concat(const Cloud& a, const Cloud& b) {
+    Cloud c = a;
+    c += b;
+    return c;
+}
+
+inline pcl::PointXYZ nan_point() {
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    return {nan, nan, nan};
+}
+
+inline double dist2(const pcl::PointXYZ& a, const pcl::PointXYZ& b) {
+    const double dx = double{a.x} - b.x, dy = double{a.y} - b.y, dz = double{a.z} - b.z;
+    return dx * dx + dy * dy + dz * dz;
+}
+
+}  // namespace pc::test

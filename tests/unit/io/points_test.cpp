@@ -1,0 +1,77 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/io/points.h>
+
+#include "support/synthetic.h"
+
+namespace pc::io {
+namespace {
+
+using F = pcl::PCLPointField;
+
+TEST(Points, XyzConvertsDoubleCoordinates) {
+    const Blob b = test::make_blob({{"z", F::FLOAT64}, {"y", F::FLOAT64}, {"x", F::FLOAT64}}, 2, 1,
+                                   [](std::size_t i, std::size_t k, std::uint32_t) {
+                                       return static_cast<double>(10 * i + k) + 0.5;
+                                   });
+    const Cloud c = xyz(b);
+    EXPECT_EQ(c[1].x, 12.5f);
+    EXPECT_EQ(c[1].z, 10.5f);
+}
+
+TEST(Points, XyzWithoutCoordinatesIsAnError) {
+    EXPECT_THROW((void)xyz(test::make_blob({{"x", F::FLOAT32}}, 1, 1, [](auto...) { return 0.0; })),
+                 IoError);
+}
+
+TEST(Points, ColoursFromPackedAndSeparateFields) {
+    Blob packed = test::make_blob({{"x", F::FLOAT32}, {"rgb", F::FLOAT32}}, 1, 1, [](auto...) { return 0.0; });
+    test::set_bits(packed, 0, 1, 0xFFFF8000u);  // NaN as a float: bits must be read, not the value
+    const auto a = colours(packed);
+    EXPECT_FLOAT_EQ(a[0].r, 1.0f);
+    EXPECT_FLOAT_EQ(a[0].g, 128 / 255.0f);
+    EXPECT_FLOAT_EQ(a[0].b, 0.0f);
+    const Blob bytes = test::make_blob({{"r", F::UINT8}, {"g", F::UINT8}, {"b", F::UINT8}}, 1, 1,
+                                       [](std::size_t, std::size_t k, std::uint32_t) { return k * 100.0; });
+    EXPECT_FLOAT_EQ(colours(bytes)[0].b, 200 / 255.0f);
+    const Blob reals = test::make_blob({{"red", F::FLOAT32}, {"green", F::FLOAT32}, {"blue", F::FLOAT32}}, 1, 1,
+                                       [](auto...) { return 0.25; });
+    EXPECT_FLOAT_EQ(colours(reals)[0].g, 0.25f);
+    EXPECT_THROW((void)colours(test::random_xyz(2)), IoError);
+}
+
+TEST(Points, LabelsRejectNegativeAndRealValues) {
+    EXPECT_THROW((void)labels(test::make_blob({{"label", F::INT32}}, 1, 1, [](auto...) { return -1.0; })),
+                 IoError);
+    EXPECT_THROW((void)labels(test::make_blob({{"label", F::FLOAT32}}, 1, 1, [](auto...) { return 1.0; })),
+                 IoError);
+    EXPECT_EQ(labels(test::make_blob({{"label", F::UINT16}}, 1, 1, [](auto...) { return 7.0; }))[0], 7u);
+}
+
+TEST(Points, AggregateAveragesRealsAndColourAndVotesIntegers) {
+    Blob b = test::make_blob({{"x", F::FLOAT32}, {"rgb", F::UINT32}, {"label", F::UINT32}}, 4, 1,
+                             [](std::size_t i, std::size_t k, std::uint32_t) {
+                                 const double label[] = {7, 3, 3, 9};
+                                 return k == 0 ? static_cast<double>(i) : k == 1 ? 0.0 : label[i];
+                             });
+    test::set_bits(b, 0, 1, 0x00FF0000u);
+    test::set_bits(b, 1, 1, 0x00000000u);
+    test::set_bits(b, 2, 1, 0x000000FFu);
+    const std::vector<std::uint32_t> group = {0, 0, 0, kNoGroup};
+    const Blob out = aggregate(b, group, 1);
+    ASSERT_EQ(out.size(), 1u);
+    float x;
+    std::uint32_t rgb, label;
+    std::memcpy(&x, &out.cloud.data[0], 4);
+    std::memcpy(&rgb, &out.cloud.data[4], 4);
+    std::memcpy(&label, &out.cloud.data[8], 4);
+    EXPECT_EQ(x, 1.0f);               // (0 + 1 + 2) / 3
+    EXPECT_EQ(rgb, 0x00550055u);      // red 255/3 = 85, blue 85
+    EXPECT_EQ(label, 3u);             // 3 twice, 7 once
+}
+
+}  // namespace
+}  // namespace pc::io

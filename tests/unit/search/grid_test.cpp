@@ -1,0 +1,97 @@
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include <pc/search/grid.h>
+
+#include "support/clouds.h"
+
+namespace pc::search {
+namespace {
+
+/// Brute-force k nearest others of point i, ordered by (d², index).
+std::vector<std::pair<double, std::uint32_t>> brute_knn(const Cloud& c, std::uint32_t i, std::size_t k) {
+    std::vector<std::pair<double, std::uint32_t>> all;
+    for (std::uint32_t j = 0; j < c.size(); ++j) {
+        if (j != i && is_finite(c[j])) {
+            all.push_back({test::dist2(c[i], c[j]), j});
+        }
+    }
+    std::sort(all.begin(), all.end());
+    all.resize(std::min(k, all.size()));
+    return all;
+}
+
+void expect_knn_matches_brute_force(const Cloud& c, std::size_t k, double cell) {
+    const Grid grid(c, cell);
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    for (std::uint32_t i = 0; i < c.size(); ++i) {
+        grid.knn(i, k, idx, d2);
+        if (!is_finite(c[i])) {
+            EXPECT_TRUE(idx.empty());
+            continue;
+        }
+        const auto ref = brute_knn(c, i, k);
+        ASSERT_EQ(idx.size(), ref.size()) << "point " << i;
+        for (std::size_t m = 0; m < ref.size(); ++m) {
+            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
+            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
+        }
+    }
+}
+
+TEST(Grid, KnnMatchesBruteForceOnRandomClouds) {
+    const Cloud c = test::uniform(1500, 1.0f, 3);
+    for (double cell : {0.01, 0.05, 0.3, 2.0, Grid::suggest_cell(c)}) {
+        expect_knn_matches_brute_force(c, 6, cell);
+    }
+}
+
+TEST(Grid, KnnBreaksTiesByIndexOnALattice) {
+    // Every inner lattice point has 6 neighbours at exactly the same distance.
+    expect_knn_matches_brute_force(test::grid({0, 0, 0}, 6, 0.1f), 4, 0.1);
+    expect_knn_matches_brute_force(test::grid({0, 0, 0}, 6, 0.1f), 7, 0.25);
+}
+
+TEST(Grid, KnnHandlesDuplicatesNanAndTinyClouds) {
+    Cloud c = test::uniform(50, 1.0f, 4);
+    c.push_back(c[3]);
+    c.push_back(c[3]);
+    c.push_back(test::nan_point());
+    expect_knn_matches_brute_force(c, 5, 0.2);
+    Cloud two;
+    two.push_back({0, 0, 0});
+    two.push_back({1, 0, 0});
+    expect_knn_matches_brute_force(two, 5, 0.1);  // fewer than k others
+}
+
+TEST(Grid, RadiusQueryMatchesBruteForceIncludingExactDistances) {
+    const Cloud c = test::concat(test::grid({0, 0, 0}, 5, 0.25f), test::uniform(300, 1.0f, 5));
+    for (double r : {0.25, 0.1, 0.4}) {
+        const Grid grid(c, r);
+        for (std::uint32_t i = 0; i < c.size(); ++i) {
+            std::vector<std::uint32_t> got;
+            grid.for_each_within(c[i], r, [&](std::uint32_t j, double) { got.push_back(j); });
+            std::sort(got.begin(), got.end());
+            std::vector<std::uint32_t> want;
+            for (std::uint32_t j = 0; j < c.size(); ++j) {
+                if (test::dist2(c[i], c[j]) <= r * r) {
+                    want.push_back(j);
+                }
+            }
+            ASSERT_EQ(got, want) << "point " << i << " r " << r;
+        }
+    }
+}
+
+TEST(Grid, HugeExtentEnlargesCellsInsteadOfFailing) {
+    Cloud c = test::uniform(100, 1.0f, 6);
+    c.push_back({1e7f, 0, 0});
+    const Grid grid(c, 1e-4);
+    EXPECT_GT(grid.cell(), 1e-4);
+    expect_knn_matches_brute_force(c, 3, 1e-4);
+}
+
+}  // namespace
+}  // namespace pc::search
