@@ -24,7 +24,8 @@ const std::vector<io::Rgb> kColours = {
 Indices run(const ColorFilterParams& p) { return color_filter(kColours, p).kept; }
 
 TEST(ColorFilter, MinMeanIsStrict) {
-XX
+    // magenta 2/3 and white 1 pass; grey's mean is exactly 0.5, which is not > 0.5
+    EXPECT_EQ(run({.min_mean = 0.5}), (Indices{3, 5}));
     EXPECT_EQ(run({.min_mean = 0.3}), (Indices{0, 1, 2, 3, 4, 5, 7}));
 }
 
