@@ -5,4 +5,10 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/build.sh OFF
 set -x
-build/bin/pc_convert -i sample_clouds/fruit_small.ply | build/bin/pc_info --text
+# The counting chain through pipes (paper-dense preset) on the shipped sample: 12 fruit.
+b=build/bin
+$b/pc_convert -i sample_clouds/fruit_small.ply | $b/pc_colorfilter --preset paper-dense \
+    | $b/pc_knn_outlier --preset paper-dense | $b/pc_dbscan --preset paper-dense \
+    | $b/pc_recursive_split --preset paper-dense | $b/pc_count --plain
+# The same chain in one process, with the report against the ground truth.
+$b/pc_fruitcount -i sample_clouds/fruit_small.ply --preset paper-dense --gt 12 | head -8

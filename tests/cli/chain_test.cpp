@@ -1,0 +1,156 @@
+// The counting chain through real pipes, and pc_fruitcount against it.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <pc/io/points.h>
+#include <pc/io/read.h>
+
+#include "support/corpus.h"
+#include "support/run_tool.h"
+
+namespace pc::test {
+namespace {
+
+const std::string kSample = std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply";
+
+int sample_fruit_count() {
+    return nlohmann::json::parse(slurp(std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.json"))
+        .at("fruit_count");
+}
+
+std::string piped_chain(const std::string& preset) {
+    const std::string p = " --preset " + preset;
+    std::string cmd = "@pc_convert -i " + kSample + " | @pc_colorfilter" + p;
+    if (preset == "invnerfseg") {
+        cmd += " | @pc_crop" + p + " | @pc_voxel" + p;
+    }
+    return cmd + " | @pc_knn_outlier" + p + " | @pc_dbscan" + p + " | @pc_recursive_split" + p;
+}
+
+TEST(Chain, PipedChainCountsTheSampleFruit) {
+    const RunResult r = run_shell(piped_chain("paper-dense") + " | @pc_count --plain");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    EXPECT_EQ(r.out, std::to_string(sample_fruit_count()) + "\n");
+}
+
+TEST(Chain, FruitcountGivesTheSameLabelsAsThePipedChain) {
+    for (const std::string preset : {"paper-dense", "paper-sparse", "invnerfseg"}) {
+        TempDir dir;
+        const RunResult piped = run_shell(piped_chain(preset));
+        ASSERT_EQ(piped.code, 0) << preset << ": " << piped.err;
+        const RunResult one = run_shell("@pc_fruitcount -i " + kSample + " --preset " + preset +
+                                        " --plain --cloud " + dir.file("l.pcd"));
+        ASSERT_EQ(one.code, 0) << preset << ": " << one.err;
+        const io::Blob a = io::parse_cloud(piped.out).blob;
+        const io::Blob b = io::read_cloud(dir.file("l.pcd")).blob;
+        EXPECT_EQ(a.cloud.data, b.cloud.data) << preset;  // every field, every point, every bit
+        const RunResult count = run_shell("@pc_count --plain --preset " + preset + " -i " + dir.file("l.pcd"));
+        EXPECT_EQ(count.out, one.out) << preset;
+    }
+}
+
+TEST(Chain, FruitcountReportsErrorAndRecoveryAgainstGroundTruth) {
+    const RunResult r = run_shell("@pc_fruitcount -i " + kSample + " --gt 12");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["count"], 12);
+    EXPECT_EQ(j["error"], 0.0);
+    EXPECT_EQ(j["recovery"], 1.0);
+    ASSERT_EQ(j["clusters"].size(), 12u);
+    // Every cluster centroid lies within one fruit radius of a true centre.
+    const auto truth = nlohmann::json::parse(slurp(std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.json"));
+    const double radius = truth["radius"];
+    for (const auto& c : j["clusters"]) {
+        double best = 1e9;
+        for (const auto& t : truth["centres"]) {
+            double d2 = 0;
+            for (int a = 0; a < 3; ++a) {
+                const double d = c["centroid"][a].get<double>() - t[a].get<double>();
+                d2 += d * d;
+            }
+            best = std::min(best, std::sqrt(d2));
+        }
+        EXPECT_LT(best, radius) << c.dump();
+    }
+}
+
+TEST(Chain, FieldsPassThroughTheWholeChain) {
+    const RunResult r = run_shell(piped_chain("paper-dense") + " | @pc_info --text");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("fields x y z rgb label\n"), std::string::npos) << r.out;
+}
+
+TEST(PcDbscan, EpsAutoReportsTheChosenValueWithVerbose) {
+    const RunResult r = run_shell("@pc_convert -i " + kSample + " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto --min-points 4 -v | @pc_count --plain");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps auto = "), std::string::npos) << r.err;
+}
+
+TEST(PcDbscan, BadEpsIsAUsageError) {
+    const RunResult r = run_shell("@pc_dbscan --eps -0.5 -i " + kSample);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("dbscan: eps must be > 0, got -0.5"), std::string::npos) << r.err;
+    EXPECT_EQ(run_shell("@pc_dbscan --eps fast -i " + kSample).code, 2);
+}
+
+TEST(PcColorfilter, CloudWithoutColourIsAClearError) {
+    const RunResult r = run_shell("@pc_colorfilter --min-mean 0.5", xyz_header("1", "ascii") + "1 2 3\n");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(r.err, "pc_colorfilter: error: cloud has no colour (looked for rgb, rgba, red green "
+                     "blue, r g b)\n");
+}
+
+TEST(PcColorfilter, InvertSplitsTheCloudIntoComplements) {
+    const RunResult a = run_shell("@pc_colorfilter --min-mean 0.5 -i " + kSample + " | @pc_info --text");
+    const RunResult b = run_shell("@pc_colorfilter --min-mean 0.5 --invert -i " + kSample + " | @pc_info --text");
+    const auto points = [](const std::string& s) {
+        return std::stoul(s.substr(s.find("points ") + 7));
+    };
+    EXPECT_EQ(points(a.out) + points(b.out), 5640u);
+}
+
+TEST(PcKnnOutlier, MarkAddsAFieldAndDropsNothing) {
+    const RunResult r = run_shell("@pc_knn_outlier --mark outlier -i " + kSample);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const io::Blob b = io::parse_cloud(r.out).blob;
+    ASSERT_EQ(b.size(), 5640u);
+    const auto flags = io::labels(b, "outlier");
+    const auto marked = std::count(flags.begin(), flags.end(), 1u);
+    EXPECT_EQ(marked, 564);  // exactly the top 10 % of 5640 distinct scores
+}
+
+TEST(PcCrop, PaperPresetHasNoCropAndInvnerfsegHasOne) {
+    EXPECT_EQ(run_shell("@pc_crop --preset paper-dense -i " + kSample).code, 2);
+    // The sample spans +-0.6 in x and y; the script's box keeps +-0.5, so some points go.
+    const RunResult in = run_shell("@pc_crop --preset invnerfseg -i " + kSample + " | @pc_info --text");
+    const RunResult out = run_shell("@pc_crop --preset invnerfseg --invert -i " + kSample + " | @pc_info --text");
+    ASSERT_EQ(in.code, 0) << in.err;
+    const auto points = [](const std::string& s) { return std::stoul(s.substr(s.find("points ") + 7)); };
+    EXPECT_GT(points(out.out), 0u);
+    EXPECT_EQ(points(in.out) + points(out.out), 5640u);
+}
+
+TEST(PcCount, EmptyCloudCountsZeroAndGroundTruthAddsRecovery) {
+    const RunResult empty = run_shell("@pc_count --plain", xyz_header("0", "binary"));
+    EXPECT_EQ(empty.code, 0) << empty.err;
+    EXPECT_EQ(empty.out, "0\n");
+    const RunResult r = run_shell(
+        "@pc_count --gt 4",
+        pcd_header("x y z label", "4 4 4 4", "F F F U", "1 1 1 1", "3", "3", "ascii") +
+            "0 0 0 1\n1 0 0 2\n2 0 0 0\n");
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["count"], 2);
+    EXPECT_EQ(j["recovery"], 0.5);
+    EXPECT_EQ(j["noise_points"], 1);
+}
+
+TEST(PcVoxel, CollapsesPointsAndKeepsFields) {
+    const RunResult r = run_shell("@pc_voxel --leaf 0.05 -i " + kSample + " | @pc_info --text");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("fields x y z rgb\n"), std::string::npos);
+    EXPECT_EQ(run_shell("@pc_voxel --leaf 0 -i " + kSample).code, 2);
+}
+
+}  // namespace
+}  // namespace pc::test
