@@ -11,4 +11,5 @@ $b/pc_convert -i sample_clouds/fruit_small.ply | $b/pc_colorfilter --preset pape
     | $b/pc_knn_outlier --preset paper-dense | $b/pc_dbscan --preset paper-dense \
     | $b/pc_recursive_split --preset paper-dense | $b/pc_count --plain
 # The same chain in one process, with the report against the ground truth.
-$b/pc_fruitcount -i sample_clouds/fruit_small.ply --preset paper-dense --gt 12 | head -8
+$b/pc_fruitcount -i sample_clouds/fruit_small.ply --preset paper-dense --gt 12 -o build/fruit_small_report.json
+grep -E '"(count|gt|error|recovery)"' build/fruit_small_report.json
