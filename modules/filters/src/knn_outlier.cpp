@@ -45,23 +45,17 @@ KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params)
     r.mean_distance.assign(n, std::numeric_limits<double>::infinity());
     r.outlier.assign(n, 1);
     const search::Grid grid(cloud, search::Grid::suggest_cell(cloud));
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> idx;
-        std::vector<double> d2;
-#pragma omp for schedule(dynamic, 4096)
-        for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); ++i) {
-            grid.knn(static_cast<std::uint32_t>(i), params.k, idx, d2);
-            if (d2.empty()) {
-                continue;
-            }
-            double sum = 0;
-            for (double v : d2) {
-                sum += std::sqrt(v);
-            }
-            r.mean_distance[i] = sum / static_cast<double>(d2.size());
+    grid.all_knn(params.k, [&](std::uint32_t i, const std::vector<std::uint32_t>&,
+                               const std::vector<double>& d2) {
+        if (d2.empty()) {
+            return;
         }
-    }
+        double sum = 0;
+        for (double v : d2) {
+            sum += std::sqrt(v);
+        }
+        r.mean_distance[i] = sum / static_cast<double>(d2.size());
+    });
     std::vector<double> finite;
     finite.reserve(n);
     for (double v : r.mean_distance) {
@@ -69,7 +63,6 @@ KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params)
             finite.push_back(v);
         }
     }
-    bool none = false;
     if (params.std_mul) {
         double mean = 0, sq = 0;
         for (double v : finite) {
@@ -86,7 +79,7 @@ KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params)
         }
         return r;
     }
-    none = params.drop_percentile == 0;
+    const bool none = params.drop_percentile == 0;
     r.threshold = none ? std::numeric_limits<double>::infinity()
                        : percentile(finite, 100.0 - params.drop_percentile);
     for (std::size_t i = 0; i < n; ++i) {

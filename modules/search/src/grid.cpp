@@ -185,13 +185,16 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         cells_.back().end = static_cast<std::uint32_t>(s + 1);
     }
     std::size_t cap = 16;
+    int bits = 4;
     while (cap < 2 * cells_.size()) {
         cap *= 2;
+        ++bits;
     }
     table_.assign(cap, 0);
     mask_ = cap - 1;
+    shift_ = 64 - bits;
     for (std::uint32_t c = 0; c < cells_.size(); ++c) {
-        std::uint64_t h = (cells_[c].key * 0x9E3779B97F4A7C15ull) >> 20;
+        std::uint64_t h = slot(cells_[c].key);
         while (table_[h & mask_] != 0) {
             ++h;
         }
@@ -213,7 +216,7 @@ const Grid::Cell* Grid::find(std::int64_t x, std::int64_t y, std::int64_t z) con
         return nullptr;
     }
     const std::uint64_t key = pack(x, y, z);
-    for (std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> 20;; ++h) {
+    for (std::uint64_t h = slot(key);; ++h) {
         const std::uint32_t slot = table_[h & mask_];
         if (slot == 0) {
             return nullptr;
@@ -367,6 +370,69 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
         const std::int32_t far = diff < 0 ? node.right : node.left;
         stack.push_back({far, std::max(bound, diff * diff)});
         stack.push_back({near, bound});
+    }
+}
+
+void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {
+    out.clear();
+    const std::uint64_t key = cells_[c].key;
+    const auto x = static_cast<std::int64_t>(key >> 42);
+    const auto y = static_cast<std::int64_t>((key >> 21) & (kAxisCells - 1));
+    const auto z = static_cast<std::int64_t>(key & (kAxisCells - 1));
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
+        for (std::int64_t dy = -1; dy <= 1; ++dy) {
+            for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                if (const Cell* n = find(x + dx, y + dy, z + dz)) {
+                    out.push_back(static_cast<std::uint32_t>(n - cells_.data()));
+                }
+            }
+        }
+    }
+    std::sort(out.begin(), out.end());
+}
+
+void Grid::all_knn(std::size_t k,
+                   const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
+                                            const std::vector<double>&)>& f) const {
+    const std::size_t others = order_.empty() ? 0 : order_.size() - 1;
+    const auto cells = static_cast<std::int64_t>(cells_.size());
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> nb, idx;
+        std::vector<double> d2;
+#pragma omp for schedule(dynamic, 64)
+        for (std::int64_t c = 0; c < cells; ++c) {
+            neighbour_cells(static_cast<std::size_t>(c), nb);
+            const std::uint64_t key = cells_[c].key;
+            const double lo[3] = {origin_[0] + static_cast<double>(key >> 42) * cell_,
+                                  origin_[1] + static_cast<double>((key >> 21) & (kAxisCells - 1)) * cell_,
+                                  origin_[2] + static_cast<double>(key & (kAxisCells - 1)) * cell_};
+            for (std::uint32_t s = cells_[c].begin; s < cells_[c].end; ++s) {
+                idx.clear();
+                d2.clear();
+                for (std::uint32_t nc : nb) {
+                    for (std::uint32_t t = cells_[nc].begin; t < cells_[nc].end; ++t) {
+                        if (t != s) {
+                            insert_candidate(order_[t], dist2(s, t), k, idx, d2);
+                        }
+                    }
+                }
+                // The 3x3x3 block covers every point closer than one cell plus the distance to
+                // the nearest face of the point's own cell.
+                double margin = cell_;
+                for (int a = 0; a < 3; ++a) {
+                    const double v = xyz_[3 * s + a];
+                    margin = std::min({margin, v - lo[a], lo[a] + cell_ - v});
+                }
+                const double reach = cell_ + std::max(margin, 0.0);
+                const bool done = (idx.size() == k && d2.back() < reach * reach) ||
+                                  (idx.size() == others && others < k);
+                if (!done) {
+                    tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);  // sparse: skip more rings
+                }
+                f(order_[s], idx, d2);
+            }
+        }
     }
 }
 

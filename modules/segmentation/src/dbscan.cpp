@@ -1,9 +1,9 @@
 #include <pc/segmentation/dbscan.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
-#include <numeric>
 
 #include <pc/core/error.h>
 #include <pc/search/grid.h>
@@ -12,13 +12,46 @@ namespace pc::segmentation {
 
 namespace {
 
-std::uint32_t find_root(std::vector<std::uint32_t>& parent, std::uint32_t x) {
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/// Lock-free union-find (links the larger root under the smaller with CAS, path halving).
+struct ConcurrentForest {
+    std::vector<std::atomic<std::uint32_t>> parent;
+    explicit ConcurrentForest(std::size_t n) : parent(n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            parent[i].store(static_cast<std::uint32_t>(i), std::memory_order_relaxed);
+        }
     }
-    return x;
-}
+    std::uint32_t find(std::uint32_t x) {
+        while (true) {
+            std::uint32_t p = parent[x].load(std::memory_order_relaxed);
+            if (p == x) {
+                return x;
+            }
+            const std::uint32_t gp = parent[p].load(std::memory_order_relaxed);
+            if (gp != p) {
+                parent[x].compare_exchange_weak(p, gp, std::memory_order_relaxed);
+            }
+            x = gp;
+        }
+    }
+    void unite(std::uint32_t a, std::uint32_t b) {
+        while (true) {
+            a = find(a);
+            b = find(b);
+            if (a == b) {
+                return;
+            }
+            if (a < b) {
+                std::swap(a, b);
+            }
+            std::uint32_t expected = a;
+            if (parent[a].compare_exchange_strong(expected, b, std::memory_order_acq_rel)) {
+                return;
+            }
+        }
+    }
+};
 
 }  // namespace
 
@@ -38,87 +71,119 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
     r.labels.assign(n, kNoise);
     r.core.assign(n, 0);
     const search::Grid grid(cloud, params.eps);
-    const auto count = static_cast<std::int64_t>(n);
+    const double eps2 = params.eps * params.eps;
+    const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
+    const auto cells = static_cast<std::int64_t>(grid.cell_count());
+    std::vector<std::uint8_t> core(m, 0);
 
-    // 1. Core points: at least min_points neighbours within eps, itself included.
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (std::int64_t i = 0; i < count; ++i) {
-        if (!is_finite(cloud[i])) {
-            continue;
+    // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
+    //    once there are enough).
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> nb;
+#pragma omp for schedule(dynamic, 64)
+        for (std::int64_t c = 0; c < cells; ++c) {
+            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
+            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+                std::uint32_t found = 0;
+                for (std::size_t k = 0; k < nb.size() && found < params.min_points; ++k) {
+                    for (std::uint32_t t = grid.cell_begin(nb[k]); t < grid.cell_end(nb[k]); ++t) {
+                        found += grid.dist2(s, t) <= eps2;
+                    }
+                }
+                core[s] = found >= params.min_points;
+            }
         }
-        std::uint32_t found = 0;
-        grid.for_each_within(cloud[i], params.eps, [&](std::uint32_t, double) { ++found; });
-        r.core[i] = found >= params.min_points;
     }
 
-    // 2. Connected components of core points (union-find).
-    std::vector<std::uint32_t> parent(n);
-    std::iota(parent.begin(), parent.end(), 0u);
-    for (std::int64_t i = 0; i < count; ++i) {
-        if (!r.core[i]) {
-            continue;
-        }
-        grid.for_each_within(cloud[i], params.eps, [&](std::uint32_t j, double) {
-            if (r.core[j] && j > i) {
-                const std::uint32_t a = find_root(parent, static_cast<std::uint32_t>(i));
-                const std::uint32_t b = find_root(parent, j);
-                if (a != b) {
-                    parent[std::max(a, b)] = std::min(a, b);
+    // 2. Connected components of core points. Each pair is seen once: t > s lies in this cell
+    //    or in a neighbour cell with a larger index.
+    ConcurrentForest forest(m);
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> nb;
+#pragma omp for schedule(dynamic, 64)
+        for (std::int64_t c = 0; c < cells; ++c) {
+            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
+            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+                if (!core[s]) {
+                    continue;
+                }
+                for (std::uint32_t nc : nb) {
+                    if (nc < c) {
+                        continue;
+                    }
+                    for (std::uint32_t t = std::max(grid.cell_begin(nc), s + 1); t < grid.cell_end(nc); ++t) {
+                        if (core[t] && grid.dist2(s, t) <= eps2) {
+                            forest.unite(s, t);
+                        }
+                    }
                 }
             }
-        });
-    }
-    std::vector<std::uint32_t> root(n, std::numeric_limits<std::uint32_t>::max());
-    for (std::int64_t i = 0; i < count; ++i) {
-        if (r.core[i]) {
-            root[i] = find_root(parent, static_cast<std::uint32_t>(i));
         }
     }
 
-    // 3. Border points join the component of their nearest core point (ties: smallest index).
-#pragma omp parallel for schedule(dynamic, 4096)
-    for (std::int64_t i = 0; i < count; ++i) {
-        if (r.core[i] || !is_finite(cloud[i])) {
-            continue;
-        }
-        double best = std::numeric_limits<double>::infinity();
-        std::uint32_t best_j = std::numeric_limits<std::uint32_t>::max();
-        grid.for_each_within(cloud[i], params.eps, [&](std::uint32_t j, double d2) {
-            if (r.core[j] && (d2 < best || (d2 == best && j < best_j))) {
-                best = d2;
-                best_j = j;
+    // 3. Each core point's component; border points take their nearest core point's (ties: the
+    //    smallest original index).
+    std::vector<std::uint32_t> root(m, kNone);
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> nb;
+#pragma omp for schedule(dynamic, 64)
+        for (std::int64_t c = 0; c < cells; ++c) {
+            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
+            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+                if (core[s]) {
+                    root[s] = forest.find(s);
+                    continue;
+                }
+                double best = std::numeric_limits<double>::infinity();
+                std::uint32_t best_t = kNone;
+                for (std::uint32_t nc : nb) {
+                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                        if (!core[t]) {
+                            continue;
+                        }
+                        const double d2 = grid.dist2(s, t);
+                        if (d2 <= eps2 && (d2 < best || (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
+                            best = d2;
+                            best_t = t;
+                        }
+                    }
+                }
+                if (best_t != kNone) {
+                    root[s] = forest.find(best_t);
+                }
             }
-        });
-        if (best_j != std::numeric_limits<std::uint32_t>::max()) {
-            root[i] = root[best_j];
         }
     }
 
-    // 4. Number clusters by decreasing size, ties by smallest member index. A component's root is
-    //    its smallest core index, not always its smallest member, so track the minimum.
-    std::vector<std::uint32_t> size(n, 0), first(n, std::numeric_limits<std::uint32_t>::max());
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (root[i] != std::numeric_limits<std::uint32_t>::max()) {
-            ++size[root[i]];
-            first[root[i]] = std::min(first[root[i]], i);
+    // 4. Number clusters by decreasing size, ties by smallest original member index.
+    std::vector<std::uint32_t> size(m, 0), first(m, kNone);
+    for (std::uint32_t s = 0; s < m; ++s) {
+        if (root[s] != kNone) {
+            ++size[root[s]];
+            first[root[s]] = std::min(first[root[s]], grid.index_of(s));
         }
     }
     std::vector<std::uint32_t> roots;
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (size[i] > 0) {
-            roots.push_back(i);
+    for (std::uint32_t s = 0; s < m; ++s) {
+        if (size[s] > 0) {
+            roots.push_back(s);
         }
     }
     std::sort(roots.begin(), roots.end(), [&](std::uint32_t a, std::uint32_t b) {
         return size[a] != size[b] ? size[a] > size[b] : first[a] < first[b];
     });
-    std::vector<std::uint32_t> label_of_root(n, kNoise);
+    std::vector<std::uint32_t> label_of_root(m, kNoise);
     for (std::uint32_t k = 0; k < roots.size(); ++k) {
         label_of_root[roots[k]] = k + 1;
     }
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (root[i] != std::numeric_limits<std::uint32_t>::max()) {
-            r.labels[i] = label_of_root[root[i]];
+    for (std::uint32_t s = 0; s < m; ++s) {
+        const std::uint32_t i = grid.index_of(s);
+        r.core[i] = core[s];
+        if (root[s] != kNone) {
+            r.labels[i] = label_of_root[root[s]];
         }
     }
     r.cluster_count = static_cast<std::uint32_t>(roots.size());

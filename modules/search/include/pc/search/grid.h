@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <mutex>
 #include <vector>
 
@@ -32,6 +33,29 @@ public:
     /// `self` is not finite.
     void knn(std::uint32_t self, std::size_t k, std::vector<std::uint32_t>& idx,
              std::vector<double>& d2) const;
+
+    /// Calls f(i, idx, d2) for every finite point i with the same answer as knn(i, k, ...), working
+    /// cell by cell in parallel (OpenMP). f is called concurrently for distinct i.
+    void all_knn(std::size_t k,
+                 const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
+                                          const std::vector<double>&)>& f) const;
+
+    // Cell-level access for algorithms that sweep the grid: points are "sorted positions"
+    // 0..finite_count()-1, grouped by cell.
+    [[nodiscard]] std::size_t cell_count() const { return cells_.size(); }
+    [[nodiscard]] std::uint32_t cell_begin(std::size_t c) const { return cells_[c].begin; }
+    [[nodiscard]] std::uint32_t cell_end(std::size_t c) const { return cells_[c].end; }
+    /// The existing cells among c's 3x3x3 neighbourhood (c included), ascending.
+    void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
+    /// Original cloud index of sorted position s.
+    [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return order_[s]; }
+    /// Squared distance between sorted positions s and t, in double.
+    [[nodiscard]] double dist2(std::uint32_t s, std::uint32_t t) const {
+        const double ex = double{xyz_[3 * s]} - xyz_[3 * t];
+        const double ey = double{xyz_[3 * s + 1]} - xyz_[3 * t + 1];
+        const double ez = double{xyz_[3 * s + 2]} - xyz_[3 * t + 2];
+        return ex * ex + ey * ey + ez * ez;
+    }
 
     [[nodiscard]] double cell() const { return cell_; }
     [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
@@ -67,6 +91,11 @@ private:
     std::vector<Cell> cells_;
     std::vector<std::uint32_t> table_;    // open addressing: cell index + 1, 0 = empty
     std::uint64_t mask_ = 0;
+    int shift_ = 60;
+    /// Fibonacci hashing: the top bits of key × 2^64/φ, which depend on every bit of the key.
+    [[nodiscard]] std::uint64_t slot(std::uint64_t key) const {
+        return (key * 0x9E3779B97F4A7C15ull) >> shift_;
+    }
     const Cloud* cloud_ = nullptr;
 };
 
