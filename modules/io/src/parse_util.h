@@ -89,7 +89,10 @@ inline bool parse_u64(std::string_view tok, std::uint64_t& v) {
     return r.ec == std::errc{} && r.ptr == tok.data() + tok.size();
 }
 
-inline bool parse_i64(std::string_view tok, std::int64_t& v) {
+/// A signed integer (std::int64_t) or a real (float, double; nan, inf, infinity in any case) in the
+/// C locale, with an optional leading '+'. The whole token must be consumed.
+template <class T>
+bool parse_signed(std::string_view tok, T& v) {
     if (!tok.empty() && tok.front() == '+') {
         tok.remove_prefix(1);
     }
@@ -100,18 +103,15 @@ inline bool parse_i64(std::string_view tok, std::int64_t& v) {
     return r.ec == std::errc{} && r.ptr == tok.data() + tok.size();
 }
 
-/// A real number in the C locale; accepts nan, inf, infinity (any case) and a leading '+'.
 template <class T>
 bool parse_real(std::string_view tok, T& v) {
-    if (!tok.empty() && tok.front() == '+') {
-        tok.remove_prefix(1);
-    }
-    if (tok.empty()) {
-        return false;
-    }
-    const auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-    return r.ec == std::errc{} && r.ptr == tok.data() + tok.size();
+    return parse_signed(tok, v);
 }
+
+inline bool parse_i64(std::string_view tok, std::int64_t& v) { return parse_signed(tok, v); }
+
+/// Longest header (PCD up to DATA, PLY up to end_header) the readers accept.
+inline constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
 
 /// a * b, throwing pc::IoError naming `what` if it overflows 64 bits.
 inline std::uint64_t checked_mul(std::uint64_t a, std::uint64_t b, const char* what) {

@@ -18,7 +18,7 @@ using detail::checked_mul;
 using detail::quote;
 using Field = pcl::PCLPointField;
 
-constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+using detail::kMaxHeaderBytes;
 constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 24;  // elements in one field of one point
 constexpr std::uint64_t kMaxPointStep = std::uint64_t{1} << 30;
 

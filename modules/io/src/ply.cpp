@@ -18,7 +18,7 @@ using detail::checked_mul;
 using detail::quote;
 using Field = pcl::PCLPointField;
 
-constexpr std::size_t kMaxHeaderBytes = std::size_t{1} << 20;
+using detail::kMaxHeaderBytes;
 
 enum class PlyFormat { kAscii, kBinaryLe, kBinaryBe };
 

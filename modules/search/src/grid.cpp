@@ -391,49 +391,57 @@ void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const
     std::sort(out.begin(), out.end());
 }
 
+void Grid::sweep_cells(
+    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f) const {
+    const auto cells = static_cast<std::int64_t>(cells_.size());
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> nb;
+#pragma omp for schedule(dynamic, 64)
+        for (std::int64_t c = 0; c < cells; ++c) {
+            neighbour_cells(static_cast<std::size_t>(c), nb);
+            f(static_cast<std::uint32_t>(c), nb);
+        }
+    }
+}
+
 void Grid::all_knn(std::size_t k,
                    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
                                             const std::vector<double>&)>& f) const {
     const std::size_t others = order_.empty() ? 0 : order_.size() - 1;
-    const auto cells = static_cast<std::int64_t>(cells_.size());
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> nb, idx;
-        std::vector<double> d2;
-#pragma omp for schedule(dynamic, 64)
-        for (std::int64_t c = 0; c < cells; ++c) {
-            neighbour_cells(static_cast<std::size_t>(c), nb);
-            const std::uint64_t key = cells_[c].key;
-            const double lo[3] = {origin_[0] + static_cast<double>(key >> 42) * cell_,
-                                  origin_[1] + static_cast<double>((key >> 21) & (kAxisCells - 1)) * cell_,
-                                  origin_[2] + static_cast<double>(key & (kAxisCells - 1)) * cell_};
-            for (std::uint32_t s = cells_[c].begin; s < cells_[c].end; ++s) {
-                idx.clear();
-                d2.clear();
-                for (std::uint32_t nc : nb) {
-                    for (std::uint32_t t = cells_[nc].begin; t < cells_[nc].end; ++t) {
-                        if (t != s) {
-                            insert_candidate(order_[t], dist2(s, t), k, idx, d2);
-                        }
+    sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+        thread_local std::vector<std::uint32_t> idx;
+        thread_local std::vector<double> d2;
+        const std::uint64_t key = cells_[c].key;
+        const double lo[3] = {origin_[0] + static_cast<double>(key >> 42) * cell_,
+                              origin_[1] + static_cast<double>((key >> 21) & (kAxisCells - 1)) * cell_,
+                              origin_[2] + static_cast<double>(key & (kAxisCells - 1)) * cell_};
+        for (std::uint32_t s = cells_[c].begin; s < cells_[c].end; ++s) {
+            idx.clear();
+            d2.clear();
+            for (std::uint32_t nc : nb) {
+                for (std::uint32_t t = cells_[nc].begin; t < cells_[nc].end; ++t) {
+                    if (t != s) {
+                        insert_candidate(order_[t], dist2(s, t), k, idx, d2);
                     }
                 }
-                // The 3x3x3 block covers every point closer than one cell plus the distance to
-                // the nearest face of the point's own cell.
-                double margin = cell_;
-                for (int a = 0; a < 3; ++a) {
-                    const double v = xyz_[3 * s + a];
-                    margin = std::min({margin, v - lo[a], lo[a] + cell_ - v});
-                }
-                const double reach = cell_ + std::max(margin, 0.0);
-                const bool done = (idx.size() == k && d2.back() < reach * reach) ||
-                                  (idx.size() == others && others < k);
-                if (!done) {
-                    tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);  // sparse: skip more rings
-                }
-                f(order_[s], idx, d2);
             }
+            // The 3x3x3 block covers every point closer than one cell plus the distance to the
+            // nearest face of the point's own cell.
+            double margin = cell_;
+            for (int a = 0; a < 3; ++a) {
+                const double v = xyz_[3 * s + a];
+                margin = std::min({margin, v - lo[a], lo[a] + cell_ - v});
+            }
+            const double reach = cell_ + std::max(margin, 0.0);
+            const bool done = (idx.size() == k && d2.back() < reach * reach) ||
+                              (idx.size() == others && others < k);
+            if (!done) {
+                tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);  // sparse: skip more rings
+            }
+            f(order_[s], idx, d2);
         }
-    }
+    });
 }
 
 }  // namespace pc::search

@@ -73,90 +73,69 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
     const search::Grid grid(cloud, params.eps);
     const double eps2 = params.eps * params.eps;
     const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
-    const auto cells = static_cast<std::int64_t>(grid.cell_count());
     std::vector<std::uint8_t> core(m, 0);
 
     // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
     //    once there are enough).
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> nb;
-#pragma omp for schedule(dynamic, 64)
-        for (std::int64_t c = 0; c < cells; ++c) {
-            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
-            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
-                std::uint32_t found = 0;
-                for (std::size_t k = 0; k < nb.size() && found < params.min_points; ++k) {
-                    for (std::uint32_t t = grid.cell_begin(nb[k]); t < grid.cell_end(nb[k]); ++t) {
-                        found += grid.dist2(s, t) <= eps2;
-                    }
+    grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+            std::uint32_t found = 0;
+            for (std::size_t k = 0; k < nb.size() && found < params.min_points; ++k) {
+                for (std::uint32_t t = grid.cell_begin(nb[k]); t < grid.cell_end(nb[k]); ++t) {
+                    found += grid.dist2(s, t) <= eps2;
                 }
-                core[s] = found >= params.min_points;
             }
+            core[s] = found >= params.min_points;
         }
-    }
+    });
 
     // 2. Connected components of core points. Each pair is seen once: t > s lies in this cell
     //    or in a neighbour cell with a larger index.
     ConcurrentForest forest(m);
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> nb;
-#pragma omp for schedule(dynamic, 64)
-        for (std::int64_t c = 0; c < cells; ++c) {
-            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
-            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
-                if (!core[s]) {
+    grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+            if (!core[s]) {
+                continue;
+            }
+            for (std::uint32_t nc : nb) {
+                if (nc < c) {
                     continue;
                 }
-                for (std::uint32_t nc : nb) {
-                    if (nc < c) {
-                        continue;
-                    }
-                    for (std::uint32_t t = std::max(grid.cell_begin(nc), s + 1); t < grid.cell_end(nc); ++t) {
-                        if (core[t] && grid.dist2(s, t) <= eps2) {
-                            forest.unite(s, t);
-                        }
+                for (std::uint32_t t = std::max(grid.cell_begin(nc), s + 1); t < grid.cell_end(nc); ++t) {
+                    if (core[t] && grid.dist2(s, t) <= eps2) {
+                        forest.unite(s, t);
                     }
                 }
             }
         }
-    }
+    });
 
     // 3. Each core point's component; border points take their nearest core point's (ties: the
     //    smallest original index).
     std::vector<std::uint32_t> root(m, kNone);
-#pragma omp parallel
-    {
-        std::vector<std::uint32_t> nb;
-#pragma omp for schedule(dynamic, 64)
-        for (std::int64_t c = 0; c < cells; ++c) {
-            grid.neighbour_cells(static_cast<std::size_t>(c), nb);
-            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
-                if (core[s]) {
-                    root[s] = forest.find(s);
-                    continue;
-                }
-                double best = std::numeric_limits<double>::infinity();
-                std::uint32_t best_t = kNone;
-                for (std::uint32_t nc : nb) {
-                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
-                        if (!core[t]) {
-                            continue;
-                        }
-                        const double d2 = grid.dist2(s, t);
-                        if (d2 <= eps2 && (d2 < best || (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
-                            best = d2;
-                            best_t = t;
-                        }
+    grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+            if (core[s]) {
+                root[s] = forest.find(s);
+                continue;
+            }
+            double best = std::numeric_limits<double>::infinity();
+            std::uint32_t best_t = kNone;
+            for (std::uint32_t nc : nb) {
+                for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                    const double d2 = core[t] ? grid.dist2(s, t) : best + 1;
+                    // d2 == best implies best is finite, so best_t is a real position.
+                    if (d2 <= eps2 && (d2 < best || (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
+                        best = d2;
+                        best_t = t;
                     }
                 }
-                if (best_t != kNone) {
-                    root[s] = forest.find(best_t);
-                }
+            }
+            if (best_t != kNone) {
+                root[s] = forest.find(best_t);
             }
         }
-    }
+    });
 
     // 4. Number clusters by decreasing size, ties by smallest original member index.
     std::vector<std::uint32_t> size(m, 0), first(m, kNone);
