@@ -3,7 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
-bash scripts/build.sh OFF
+bash scripts/build.sh
 set -x
 # The counting chain through pipes (paper-dense preset) on the shipped sample: 12 fruit.
 b=build/bin

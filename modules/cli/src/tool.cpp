@@ -144,9 +144,12 @@ void write_cloud_file(const std::string& path, const io::Blob& blob) {
 
 // ---------------------------------------------------------------------------------------------
 
-io::Blob Streams::read() {
-    io::ReadResult r = io::read_cloud(input_, max_input_bytes_);
+io::Blob Streams::read() { return read(input_); }
+
+io::Blob Streams::read(const std::string& path) {
+    io::ReadResult r = io::read_cloud(path, max_input_bytes_);
     input_format_ = r.format;
+    input_name_ = io::display_name(path);
     for (const auto& n : r.notes) {
         note(input_name_ + ": " + n);
     }
@@ -206,6 +209,8 @@ struct Tool::Impl {
     std::vector<Binding> bindings;
     std::function<void(const std::string&)> apply_preset;
     std::string preset;
+    std::vector<std::string>* inputs = nullptr;
+    std::string inputs_help;
 };
 
 Tool::Tool(std::string name, std::string summary, Output output) : impl_(std::make_unique<Impl>()) {
@@ -297,6 +302,11 @@ void Tool::presets(const std::vector<std::string>& names,
 
 void Tool::epilog(const std::string& text) { impl_->epilog = text; }
 
+void Tool::inputs(std::vector<std::string>* paths, const std::string& help) {
+    impl_->inputs = paths;
+    impl_->inputs_help = help;
+}
+
 int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
     std::signal(SIGPIPE, SIG_IGN);  // a closed pipe becomes EPIPE, handled quietly below
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // PCL's info level writes to stdout
@@ -324,15 +334,26 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
     }
     po::options_description all;
     all.add(im.own).add(common);
+    po::options_description parse_set;
+    parse_set.add(all);
+    po::positional_options_description positional;
+    if (im.inputs != nullptr) {
+        parse_set.add_options()("inputs", po::value<std::vector<std::string>>(im.inputs),
+                                im.inputs_help.c_str());
+        positional.add("inputs", -1);
+    }
     const auto report = [&](const std::string& what) {
         std::cerr << im.name << ": error: " << what << '\n';
     };
     try {
         po::variables_map vm;
-        po::store(po::command_line_parser(argc, argv).options(all).run(), vm);
+        po::store(po::command_line_parser(argc, argv).options(parse_set).positional(positional).run(),
+                  vm);
         if (vm.count("help")) {
             std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
-                      << " [options] [-i IN] [-o OUT]\n\n"
+                      << (im.inputs ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
+                                    : std::string(" [options] [-i IN] [-o OUT]"))
+                      << "\n\n"
                       << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
                       << im.epilog;
             return kOk;
@@ -371,7 +392,13 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                                       "a pipe, or --format ascii");
             }
         }
-        if (io.input_ == "-" && ::isatty(0)) {
+        if (im.inputs != nullptr && im.inputs->empty()) {
+            im.inputs->push_back(io.input_);
+        }
+        const bool reads_stdin =
+            im.inputs ? std::find(im.inputs->begin(), im.inputs->end(), "-") != im.inputs->end()
+                      : io.input_ == "-";
+        if (reads_stdin && ::isatty(0)) {
             throw InvalidArgument("no input: standard input is a terminal; use -i FILE or a pipe");
         }
         io.input_name_ = io::display_name(io.input_);

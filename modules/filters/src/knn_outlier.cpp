@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <pc/core/error.h>
+#include <pc/core/stats.h>
 #include <pc/search/grid.h>
 
 namespace pc::filters {
@@ -20,22 +21,6 @@ void KnnOutlierParams::validate() const {
     if (std_mul && !std::isfinite(*std_mul)) {
         throw InvalidArgument("knn_outlier: std_mul must be finite, got " + format_number(*std_mul));
     }
-}
-
-double percentile(std::vector<double>& values, double q) {
-    if (values.empty()) {
-        return std::nan("");
-    }
-    const double pos = q / 100.0 * static_cast<double>(values.size() - 1);
-    const auto lo = static_cast<std::size_t>(std::floor(pos));
-    const double frac = pos - static_cast<double>(lo);
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(lo), values.end());
-    const double a = values[lo];
-    if (frac == 0 || lo + 1 >= values.size()) {
-        return a;
-    }
-    const double b = *std::min_element(values.begin() + static_cast<std::ptrdiff_t>(lo) + 1, values.end());
-    return a + frac * (b - a);  // numpy's linear method
 }
 
 KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params) {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <pc/core/error.h>
+#include <pc/core/stats.h>
 #include <pc/segmentation/kmeans.h>
 
 namespace pc::segmentation {
@@ -53,20 +54,6 @@ void RecursiveSplitParams::validate() const {
         throw InvalidArgument("recursive_split: restarts must be >= 1, got " +
                               std::to_string(restarts));
     }
-}
-
-double median(std::vector<double>& v) {
-    if (v.empty()) {
-        return std::nan("");
-    }
-    const std::size_t mid = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid), v.end());
-    const double hi = v[mid];
-    if (v.size() % 2 == 1) {
-        return hi;
-    }
-    const double lo = *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(mid));
-    return (lo + hi) / 2;
 }
 
 std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t min_size) {

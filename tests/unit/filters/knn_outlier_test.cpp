@@ -49,14 +49,6 @@ TEST(KnnOutlier, ScoresMatchBruteForce) {
     }
 }
 
-TEST(KnnOutlier, PercentileIsNumpysLinearInterpolation) {
-    // numpy.percentile([1, 2, 3, 4], 90) = 3.7; ([5], 50) = 5; ([1, 2], 25) = 1.25
-    std::vector<double> a = {4, 1, 3, 2}, b = {5}, c = {2, 1};
-    EXPECT_DOUBLE_EQ(percentile(a, 90), 3.7);
-    EXPECT_DOUBLE_EQ(percentile(b, 50), 5);
-    EXPECT_DOUBLE_EQ(percentile(c, 25), 1.25);
-}
-
 TEST(KnnOutlier, DropsTheTopTenPercentAtOrAboveTheCut) {
     const Cloud c = test::uniform(1000, 1.0f, 12);
     const auto r = knn_outlier(c, {.k = 5, .drop_percentile = 10});

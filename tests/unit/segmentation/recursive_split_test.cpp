@@ -89,13 +89,6 @@ TEST(RecursiveSplit, NoiseStaysNoiseAndNumberingIsBySize) {
     EXPECT_TRUE(std::is_sorted(sizes.begin() + 1, sizes.end(), std::greater<>()));
 }
 
-TEST(RecursiveSplit, MedianIsTheUsualOne) {
-    std::vector<double> odd = {3, 1, 2}, even = {4, 1, 3, 2}, none;
-    EXPECT_EQ(median(odd), 2);
-    EXPECT_EQ(median(even), 2.5);
-    EXPECT_TRUE(std::isnan(median(none)));
-}
-
 TEST(RecursiveSplit, RejectsNegativeFactors) {
     const Cloud c = test::ball({0, 0, 0}, 1, 10, 3);
     const std::vector<std::uint32_t> labels(c.size(), 1);

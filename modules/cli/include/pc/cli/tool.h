@@ -26,6 +26,8 @@ class Streams {
 public:
     /// Reads the whole input (stdin by default). Reader notes are printed with -v.
     [[nodiscard]] io::Blob read();
+    /// Reads `path` ("-" = stdin), as read() does.
+    [[nodiscard]] io::Blob read(const std::string& path);
     /// Writes a cloud: PCD (or PLY when `--to ply` or `-o x.ply`), atomically for -o FILE.
     void write(const io::Blob& blob);
     /// Writes a text report, atomically for -o FILE.
@@ -84,6 +86,9 @@ public:
     /// `--preset NAME`: `apply` runs before every explicitly given option, so flags override it.
     void presets(const std::vector<std::string>& names,
                  std::function<void(const std::string&)> apply);
+    /// Positional input paths (`pc_extent a.ply b.pcd`); when none are given, `paths` holds the
+    /// -i value (stdin by default).
+    void inputs(std::vector<std::string>* paths, const std::string& help);
     /// Extra text printed at the end of --help.
     void epilog(const std::string& text);
 

@@ -30,7 +30,4 @@ struct KnnOutlierResult {
 /// finite points' scores. Deterministic: independent of thread count.
 [[nodiscard]] KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params);
 
-/// numpy.percentile(values, q) with linear interpolation; values are reordered. NaN if empty.
-[[nodiscard]] double percentile(std::vector<double>& values, double q);
-
 }  // namespace pc::filters

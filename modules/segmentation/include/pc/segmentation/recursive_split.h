@@ -55,7 +55,4 @@ struct RecursiveSplitResult {
 /// index; clusters below `min_size` points become 0. Returns N.
 std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t min_size = 0);
 
-/// Median of `v` (mean of the two middle values for an even count); NaN when empty. Reorders v.
-[[nodiscard]] double median(std::vector<double>& v);
-
 }  // namespace pc::segmentation
