@@ -203,7 +203,9 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
 }
 
 std::int64_t Grid::coord(float v, int axis) const {
-    return static_cast<std::int64_t>(std::floor((double{v} - origin_[axis]) / cell_));
+    // Clamped so that far query points (not in the grid) cannot overflow the conversion.
+    const double c = std::floor((double{v} - origin_[axis]) / cell_);
+    return static_cast<std::int64_t>(std::clamp(c, -1e12, 1e12));
 }
 
 std::uint64_t Grid::pack(std::int64_t x, std::int64_t y, std::int64_t z) {
@@ -231,16 +233,30 @@ void Grid::knn(std::uint32_t self,
                std::size_t k,
                std::vector<std::uint32_t>& idx,
                std::vector<double>& d2) const {
+    search(cloud_->points[self], self, k, idx, d2);
+}
+
+void Grid::knn_point(const pcl::PointXYZ& q, std::size_t k, std::vector<std::uint32_t>& idx,
+                     std::vector<double>& d2) const {
+    search(q, std::numeric_limits<std::uint32_t>::max(), k, idx, d2);
+}
+
+void Grid::search(const pcl::PointXYZ& q,
+                  std::uint32_t self,
+                  std::size_t k,
+                  std::vector<std::uint32_t>& idx,
+                  std::vector<double>& d2) const {
     idx.clear();
     d2.clear();
-    if (k == 0) {
-        return;
-    }
-    const auto& q = (*cloud_)[self];
-    if (!is_finite(q)) {
-        return;  // not in the grid
+    if (k == 0 || order_.empty() || !is_finite(q)) {
+        return;  // a non-finite query has no neighbours
     }
     const std::int64_t c[3] = {coord(q.x, 0), coord(q.y, 1), coord(q.z, 2)};
+    // A query outside the grid's range (pc_compare's other cloud) goes to the tree at once.
+    bool outside = false;
+    for (int a = 0; a < 3; ++a) {
+        outside = outside || c[a] < -1 || c[a] > kAxisCells;
+    }
     // Distance from q to the nearest face of its own cell: points in ring r+1 are at least
     // r * cell + margin away.
     double margin = std::numeric_limits<double>::infinity();
@@ -262,7 +278,8 @@ void Grid::knn(std::uint32_t self,
             insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
         }
     };
-    const std::size_t others = order_.size() - 1;
+    const bool indexed = self < cloud_->size() && is_finite((*cloud_)[self]);
+    const std::size_t others = order_.size() - (indexed ? 1 : 0);
     for (std::int64_t r = 0;; ++r) {
         for (std::int64_t dz = -r; dz <= r; ++dz) {
             for (std::int64_t dy = -r; dy <= r; ++dy) {
@@ -285,7 +302,7 @@ void Grid::knn(std::uint32_t self,
         if (idx.size() == others) {
             return;  // fewer than k other points, all seen
         }
-        if (r == kMaxRing) {
+        if (r == kMaxRing || outside) {
             tree_knn(q, self, k, idx, d2);  // an isolated point: let the tree bound the work
             return;
         }

@@ -34,6 +34,10 @@ public:
     void knn(std::uint32_t self, std::size_t k, std::vector<std::uint32_t>& idx,
              std::vector<double>& d2) const;
 
+    /// The k nearest indexed points to any query point q (need not be in the cloud), as knn().
+    void knn_point(const pcl::PointXYZ& q, std::size_t k, std::vector<std::uint32_t>& idx,
+                   std::vector<double>& d2) const;
+
     /// Calls f(i, idx, d2) for every finite point i with the same answer as knn(i, k, ...), working
     /// cell by cell in parallel (OpenMP). f is called concurrently for distinct i.
     void all_knn(std::size_t k,
@@ -73,6 +77,8 @@ private:
     [[nodiscard]] static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z);
     [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const;
     void build_tree() const;
+    void search(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
+                std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
     void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
                   std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
 

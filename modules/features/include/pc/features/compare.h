@@ -1,0 +1,40 @@
+#pragma once
+
+#include <cstddef>
+
+#include <pc/core/cloud.h>
+
+namespace pc::features {
+
+/// Parameters of compare(). Lengths are in cloud units.
+struct CompareParams {
+    double tau = 0.01;    ///< distance threshold of accuracy / completeness (<= tau counts), > 0
+    double voxel = 0.01;  ///< voxel side for interior coverage, > 0
+
+    void validate() const;
+};
+
+/// Nearest-neighbour distances from every finite point of one cloud to the other.
+struct DirectionStats {
+    std::size_t points = 0;  ///< finite query points
+    double mean = 0, median = 0, rms = 0, max = 0;
+    double within_tau = 0;   ///< fraction of query points with distance <= tau
+};
+
+struct CompareResult {
+    DirectionStats a_to_b, b_to_a;
+    double chamfer = 0;      ///< mean(a→b) + mean(b→a), not squared
+    double precision = 0;    ///< accuracy: a_to_b.within_tau (A = reconstruction)
+    double recall = 0;       ///< completeness: b_to_a.within_tau (B = reference)
+    double fscore = 0;       ///< 2PR / (P + R), 0 when both are 0 (Tanks and Temples)
+    std::size_t b_voxels = 0;       ///< voxels occupied by B
+    std::size_t shared_voxels = 0;  ///< of those, also occupied by A
+    double interior_coverage = 0;   ///< shared_voxels / b_voxels (0 when B is empty)
+};
+
+/// Cloud-to-cloud comparison of A (reconstruction) against B (reference). Exact nearest
+/// neighbours (grid + k-d tree). Voxels are floor(p / voxel) on a grid anchored at the origin,
+/// shared by both clouds. Non-finite points are skipped. An empty side gives zero statistics.
+[[nodiscard]] CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& params);
+
+}  // namespace pc::features

@@ -1,0 +1,93 @@
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <pc/io/points.h>
+#include <pc/io/read.h>
+
+#include "support/corpus.h"
+#include "support/run_tool.h"
+
+namespace pc::test {
+namespace {
+
+const std::string kSample = std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply";
+
+/// x y z normal_x normal_y normal_z (F 4) and a label: two points.
+std::string cloud_with_normals() {
+    return pcd_header("x y z normal_x normal_y normal_z label", "4 4 4 4 4 4 4", "F F F F F F U",
+                      "1 1 1 1 1 1 1", "2", "2", "ascii") +
+           "1 0 0 1 0 0 7\n0.1 0.2 0.3 0 0 1 9\n";
+}
+
+TEST(PcTransform, TransformThenInverseIsTheIdentityWithinFloatPrecision) {
+    TempDir dir;
+    spit(dir.file("a.pcd"), cloud_with_normals());
+    const std::string t = " --rotate 1,2,3,33 --scale 2.5 --translate 4,-5,6 --matrix 1,0,0,1,0,1,0,2,0,0,1,3";
+    const RunResult r = run_shell("@pc_transform -i " + dir.file("a.pcd") + t + " | @pc_transform --inverse" + t +
+                                  " | @pc_compare - " + dir.file("a.pcd") + " --tau 1e-5");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_LT(j["a_to_b"]["max"].get<double>(), 2e-6);
+    EXPECT_EQ(j["fscore"], 1.0);
+}
+
+TEST(PcTransform, NormalsRotateWithThePointsAndOtherFieldsStay) {
+    const RunResult r = run_shell("@pc_transform --rotate 0,0,1,90 --scale 3", cloud_with_normals());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const io::Blob b = io::parse_cloud(r.out).blob;
+    const Cloud c = io::xyz(b);
+    EXPECT_NEAR(c[0].x, 0, 1e-6);
+    EXPECT_NEAR(c[0].y, 3, 1e-6);
+    const auto* nx = io::find_field(b, "normal_x");
+    const auto* ny = io::find_field(b, "normal_y");
+    EXPECT_NEAR(io::value_as_double(&b.cloud.data[nx->offset], nx->datatype), 0, 1e-6);
+    EXPECT_NEAR(io::value_as_double(&b.cloud.data[ny->offset], ny->datatype), 1, 1e-6);  // unit
+    EXPECT_EQ(io::labels(b), (std::vector<std::uint32_t>{7, 9}));
+}
+
+TEST(PcTransform, NerfstudioRoundTrip) {
+    TempDir dir;
+    spit(dir.file("dp.json"),
+         R"({"transform": [[0.0, 0.6, 0.8, 0.1], [1.0, 0.0, 0.0, -0.2], [0.0, 0.8, -0.6, 0.3]], "scale": 0.24})");
+    const RunResult r = run_shell("@pc_transform -i " + kSample + " --nerfstudio " + dir.file("dp.json") +
+                                  " --inverse | @pc_transform --nerfstudio " + dir.file("dp.json") +
+                                  " | @pc_compare - " + kSample + " --tau 1e-9");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_LT(nlohmann::json::parse(r.out)["a_to_b"]["max"].get<double>(), 1e-12);  // F 8 coordinates
+}
+
+TEST(PcTransform, CenterAndNormalize) {
+    const RunResult r = run_shell("@pc_transform -i " + kSample + " --center --normalize mean-radius | @pc_extent");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto c = nlohmann::json::parse(r.out)["clouds"][0];
+    // pc_extent measures float coordinates (pc::Cloud), so float precision is the bound.
+    EXPECT_NEAR(c["mean_radius"].get<double>(), 1.0, 1e-6);
+    EXPECT_NEAR(c["centroid"][0].get<double>(), 0.0, 1e-6);
+    const RunResult d = run_shell("@pc_transform -i " + kSample + " --normalize diagonal | @pc_info");
+    const auto j = nlohmann::json::parse(d.out);
+    double diag2 = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double e = j["bbox"]["max"][a].get<double>() - j["bbox"]["min"][a].get<double>();
+        diag2 += e * e;
+    }
+    EXPECT_NEAR(std::sqrt(diag2), 1.0, 1e-12);
+}
+
+TEST(PcTransform, BadArgumentsAreUsageErrors) {
+    EXPECT_EQ(run_shell("@pc_transform --scale 0 -i " + kSample).code, 2);
+    EXPECT_EQ(run_shell("@pc_transform --rotate 0,0,0,90 -i " + kSample).code, 2);
+    EXPECT_EQ(run_shell("@pc_transform --matrix 1,2,3 -i " + kSample).code, 2);
+    EXPECT_EQ(run_shell("@pc_transform --normalize unit -i " + kSample).code, 2);
+    EXPECT_EQ(run_shell("@pc_transform --nerfstudio /nonexistent.json -i " + kSample).code, 2);
+}
+
+TEST(PcCompare, NeedsExactlyTwoInputs) {
+    EXPECT_EQ(run_shell("@pc_compare " + kSample).code, 2);
+    const RunResult csv = run_shell("@pc_compare --csv " + kSample + " " + kSample);
+    EXPECT_EQ(line_count(csv.out), 2);
+}
+
+}  // namespace
+}  // namespace pc::test
