@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
                        "compare cloud A (reconstruction) with B (reference): distances both ways, "
                        "accuracy, completeness, F-score at tau, interior coverage",
                        pc::cli::Output::kText);
-    tool.inputs(&inputs, "A B: the reconstruction, then the reference");
+    tool.inputs(&inputs, "A B: the reconstruction, then the reference (A from -i or stdin if only "
+                         "B is given)", 2);
     tool.option("tau", &p.tau, "distance threshold: a point counts if its nearest neighbour is <= tau");
     tool.option("voxel", &p.voxel, "voxel side for interior coverage (grid anchored at the origin)");
     tool.flag("csv", &csv, "one CSV row instead of JSON");

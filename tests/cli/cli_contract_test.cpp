@@ -27,6 +27,12 @@ std::string valid_cloud() {
            "0 0 0 16777215 1\n0.001 0 0 16777215 1\n0 0.001 0 16777215 1\n";
 }
 
+/// What a tool needs on its command line besides the cloud it reads: pc_compare also takes the
+/// reference cloud B (its A is stdin or -i).
+std::string extra_args(const std::string& tool) {
+    return tool == "pc_compare" ? " " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply" : "";
+}
+
 /// Tools whose job is the format itself: every edge-case file must pass through them.
 bool format_tool(const std::string& tool) { return tool == "pc_info" || tool == "pc_convert"; }
 
@@ -47,7 +53,7 @@ TEST_P(Contract, VersionExitsZero) {
 }
 
 TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
-    const RunResult r = run_shell("@" + GetParam() + " --bogus", valid_cloud());
+    const RunResult r = run_shell("@" + GetParam() + " --bogus" + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
     EXPECT_EQ(r.err.rfind(GetParam() + ": error: ", 0), 0u) << r.err;
@@ -55,14 +61,15 @@ TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
 }
 
 TEST_P(Contract, UnparsableValueIsAUsageError) {
-    const RunResult r = run_shell("@" + GetParam() + " --max-input-bytes lots", valid_cloud());
+    const RunResult r =
+        run_shell("@" + GetParam() + " --max-input-bytes lots" + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
 }
 
 TEST_P(Contract, TruncatedCloudOnStdinFailsWithOneLineNamingStdin) {
-    const RunResult r =
-        run_shell("@" + GetParam(), xyz_header("100", "binary") + floats({1, 2, 3}));
+    const RunResult r = run_shell("@" + GetParam() + extra_args(GetParam()),
+                                  xyz_header("100", "binary") + floats({1, 2, 3}));
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
     EXPECT_NE(r.err.find("<stdin>: truncated binary body"), std::string::npos) << r.err;
@@ -70,7 +77,7 @@ TEST_P(Contract, TruncatedCloudOnStdinFailsWithOneLineNamingStdin) {
 }
 
 TEST_P(Contract, ValidCloudSucceedsSilently) {
-    const RunResult r = run_shell("@" + GetParam(), valid_cloud());
+    const RunResult r = run_shell("@" + GetParam() + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(r.err.empty()) << r.err;
     EXPECT_FALSE(r.out.empty());
@@ -83,8 +90,9 @@ TEST_P(Contract, EveryMalformedInputFailsCleanlyByPathAndByPipe) {
         spit(in, m.bytes);
         const std::string out = dir.file("out.pcd");
         for (const bool by_path : {true, false}) {
-            const std::string cmd = by_path ? "@" + GetParam() + " -i " + in + " -o " + out
-                                            : "cat " + in + " | @" + GetParam() + " -o " + out;
+            const std::string cmd =
+                (by_path ? "@" + GetParam() + " -i " + in + " -o " + out
+                         : "cat " + in + " | @" + GetParam() + " -o " + out) + extra_args(GetParam());
             const RunResult r = run_shell("timeout 10 sh -c '" + memory_cap(4000000) + cmd + "'");
             EXPECT_EQ(r.code, 1) << m.name << (by_path ? " by path: " : " by pipe: ") << r.err;
             EXPECT_EQ(line_count(r.err), 1) << m.name << ": " << r.err;
@@ -101,7 +109,7 @@ TEST_P(Contract, EdgeCaseInputsAreAcceptedOrRefusedCleanly) {
     // Format tools accept every edge case; algorithm tools may refuse one that lacks what they
     // need (colour, label), with exit 1 and one line, never a crash.
     for (const auto& e : edge_corpus()) {
-        const RunResult r = run_shell("@" + GetParam(), e.bytes);
+        const RunResult r = run_shell("@" + GetParam() + extra_args(GetParam()), e.bytes);
         if (format_tool(GetParam())) {
             EXPECT_EQ(r.code, 0) << e.name << ": " << r.err;
             EXPECT_TRUE(r.err.empty()) << e.name << ": " << r.err;
@@ -113,7 +121,7 @@ TEST_P(Contract, EdgeCaseInputsAreAcceptedOrRefusedCleanly) {
 }
 
 TEST_P(Contract, DirectoryInputIsRejected) {
-    const RunResult r = run_shell("@" + GetParam() + " -i /tmp");
+    const RunResult r = run_shell("@" + GetParam() + " -i /tmp" + extra_args(GetParam()));
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(r.err, GetParam() + ": error: /tmp: is a directory\n");
 }

@@ -83,8 +83,13 @@ TEST(PcTransform, BadArgumentsAreUsageErrors) {
     EXPECT_EQ(run_shell("@pc_transform --nerfstudio /nonexistent.json -i " + kSample).code, 2);
 }
 
-TEST(PcCompare, NeedsExactlyTwoInputs) {
-    EXPECT_EQ(run_shell("@pc_compare " + kSample).code, 2);
+TEST(PcCompare, TakesTwoInputsWithAFromStdinWhenOnlyBIsGiven) {
+    EXPECT_EQ(run_shell("@pc_compare " + kSample + " " + kSample + " " + kSample).code, 2);
+    const RunResult piped = run_shell("@pc_compare --plain-is-not-an-option " + kSample);
+    EXPECT_EQ(piped.code, 2);
+    const RunResult r = run_shell("@pc_convert -i " + kSample + " | @pc_compare " + kSample);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["a"], "<stdin>");
     const RunResult csv = run_shell("@pc_compare --csv " + kSample + " " + kSample);
     EXPECT_EQ(line_count(csv.out), 2);
 }

@@ -211,6 +211,7 @@ struct Tool::Impl {
     std::string preset;
     std::vector<std::string>* inputs = nullptr;
     std::string inputs_help;
+    std::size_t min_inputs = 1;
 };
 
 Tool::Tool(std::string name, std::string summary, Output output) : impl_(std::make_unique<Impl>()) {
@@ -302,9 +303,10 @@ void Tool::presets(const std::vector<std::string>& names,
 
 void Tool::epilog(const std::string& text) { impl_->epilog = text; }
 
-void Tool::inputs(std::vector<std::string>* paths, const std::string& help) {
+void Tool::inputs(std::vector<std::string>* paths, const std::string& help, std::size_t min_count) {
     impl_->inputs = paths;
     impl_->inputs_help = help;
+    impl_->min_inputs = min_count;
 }
 
 int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
@@ -392,8 +394,9 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                                       "a pipe, or --format ascii");
             }
         }
-        if (im.inputs != nullptr && im.inputs->empty()) {
-            im.inputs->push_back(io.input_);
+        if (im.inputs != nullptr &&
+            (!vm["input"].defaulted() || im.inputs->size() < im.min_inputs)) {
+            im.inputs->insert(im.inputs->begin(), io.input_);  // -i, or stdin by default
         }
         const bool reads_stdin =
             im.inputs ? std::find(im.inputs->begin(), im.inputs->end(), "-") != im.inputs->end()

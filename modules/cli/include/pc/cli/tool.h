@@ -86,9 +86,9 @@ public:
     /// `--preset NAME`: `apply` runs before every explicitly given option, so flags override it.
     void presets(const std::vector<std::string>& names,
                  std::function<void(const std::string&)> apply);
-    /// Positional input paths (`pc_extent a.ply b.pcd`); when none are given, `paths` holds the
-    /// -i value (stdin by default).
-    void inputs(std::vector<std::string>* paths, const std::string& help);
+    /// Positional input paths (`pc_extent a.ply b.pcd`). An explicit -i is the first input; when
+    /// fewer than `min_count` paths are given, stdin ("-") comes first (`pc_compare B < A`).
+    void inputs(std::vector<std::string>* paths, const std::string& help, std::size_t min_count = 1);
     /// Extra text printed at the end of --help.
     void epilog(const std::string& text);
 
