@@ -36,6 +36,19 @@ inline Cloud ball(const pcl::PointXYZ& centre, float radius, std::size_t n, unsi
     return c;
 }
 
+/// n points uniform on the sphere of radius r around the origin (normalised Gaussians, seeded).
+inline Cloud sphere_shell(float r, std::size_t n, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> g(0, 1);
+    Cloud c;
+    for (std::size_t i = 0; i < n; ++i) {
+        const float x = g(rng), y = g(rng), z = g(rng);
+        const float len = std::sqrt(x * x + y * y + z * z);
+        c.push_back({r * x / len, r * y / len, r * z / len});
+    }
+    return c;
+}
+
 /// n points uniform in the cube [0, side)^3.
 inline Cloud uniform(std::size_t n, float side, unsigned seed) {
     std::mt19937 rng(seed);

@@ -10,18 +10,6 @@
 namespace pc::features {
 namespace {
 
-Cloud shell(float r, std::size_t n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::normal_distribution<float> g(0, 1);
-    Cloud c;
-    for (std::size_t i = 0; i < n; ++i) {
-        const float x = g(rng), y = g(rng), z = g(rng);
-        const float len = std::sqrt(x * x + y * y + z * z);
-        c.push_back({r * x / len, r * y / len, r * z / len});
-    }
-    return c;
-}
-
 TEST(Compare, CloudAgainstItselfIsPerfect) {
     const Cloud a = test::uniform(3000, 1.0f, 4);
     const CompareResult r = compare(a, a, {.tau = 0.001, .voxel = 0.05});
@@ -44,7 +32,7 @@ TEST(Compare, ShiftedLatticeDistancesAreTheShift) {
 
 TEST(Compare, HollowShellCoversLittleOfASolidBall) {
     const Cloud solid = test::ball({0, 0, 0}, 1.0f, 60000, 5);
-    const Cloud hollow = shell(1.0f, 20000, 6);
+    const Cloud hollow = test::sphere_shell(1.0f, 20000, 6);
     const CompareResult r = compare(hollow, solid, {.tau = 0.05, .voxel = 0.1});
     EXPECT_LT(r.interior_coverage, 0.5);  // only the outer layer of voxels is shared
     const CompareResult self = compare(solid, solid, {.tau = 0.05, .voxel = 0.1});

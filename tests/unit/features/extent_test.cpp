@@ -10,18 +10,6 @@
 namespace pc::features {
 namespace {
 
-Cloud sphere_shell(float r, std::size_t n, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::normal_distribution<float> g(0, 1);
-    Cloud c;
-    for (std::size_t i = 0; i < n; ++i) {
-        const float x = g(rng), y = g(rng), z = g(rng);
-        const float len = std::sqrt(x * x + y * y + z * z);
-        c.push_back({r * x / len, r * y / len, r * z / len});
-    }
-    return c;
-}
-
 TEST(Extent, FilledCubeHullIsTheCubeExactly) {
     const Cloud c = test::grid({0, 0, 0}, 11, 0.1f);  // corners at 0 and 1.0000000149
     const Extent e = extent(c);
@@ -43,7 +31,7 @@ TEST(Extent, FinelySampledBallHullIsWithinOnePercent) {
 }
 
 TEST(Extent, SphereShellMeanRadiusIsTheRadius) {
-    const Extent e = extent(sphere_shell(1.5f, 20000, 3));
+    const Extent e = extent(test::sphere_shell(1.5f, 20000, 3));
     EXPECT_NEAR(e.mean_radius, 1.5, 1e-3);
     EXPECT_NEAR(e.max_radius, 1.5, 2e-2);
 }
