@@ -20,10 +20,30 @@ struct ReadResult {
     std::vector<std::string> notes;
 };
 
-/// All bytes of `path` ("-" = standard input). Rejects directories and other non-regular,
-/// non-pipe inputs up front, and inputs above `max_bytes`. Messages do not name the input;
-/// the caller adds it. Throws pc::IoError.
-[[nodiscard]] std::string read_all(const std::string& path, std::uint64_t max_bytes);
+/// All bytes of one input, held without copying or zero-filling: a read-only mapping of a regular
+/// file, or a heap buffer filled from a pipe. Move-only.
+class InputBytes {
+public:
+    InputBytes() = default;
+    InputBytes(InputBytes&& other) noexcept;
+    InputBytes& operator=(InputBytes&& other) noexcept;
+    InputBytes(const InputBytes&) = delete;
+    InputBytes& operator=(const InputBytes&) = delete;
+    ~InputBytes();
+    [[nodiscard]] std::string_view view() const { return {data_, size_}; }
+
+private:
+    friend InputBytes read_all(const std::string& path, std::uint64_t max_bytes);
+    void release();
+    char* data_ = nullptr;
+    std::size_t size_ = 0;
+    bool mapped_ = false;
+};
+
+/// All bytes of `path` ("-" = standard input). Rejects directories and block devices up front,
+/// and inputs above `max_bytes`. Messages do not name the input; the caller adds it.
+/// Throws pc::IoError.
+[[nodiscard]] InputBytes read_all(const std::string& path, std::uint64_t max_bytes);
 
 /// Parses PCD (ascii, binary, binary_compressed), PLY (ascii, binary LE/BE) or XYZ text,
 /// recognised by content. Every header value is checked against the bytes present before
