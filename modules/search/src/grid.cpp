@@ -316,38 +316,53 @@ void Grid::build_tree() const {
         for (std::uint32_t s = 0; s < n; ++s) {
             tree_perm_[s] = s;
         }
-        nodes_.reserve(2 * (n / kLeafSize + 1));
-        // Iterative build: median split on the widest axis of each range.
+        nodes_.reserve(4 * (n / kLeafSize + 1));
         nodes_.push_back({0, n});
-        for (std::size_t at = 0; at < nodes_.size(); ++at) {
-            const std::uint32_t b = nodes_[at].begin, e = nodes_[at].end;
-            if (e - b <= kLeafSize) {
-                continue;
-            }
-            float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-            for (std::uint32_t p = b; p < e; ++p) {
-                for (int a = 0; a < 3; ++a) {
-                    lo[a] = std::min(lo[a], xyz_[3 * tree_perm_[p] + a]);
-                    hi[a] = std::max(hi[a], xyz_[3 * tree_perm_[p] + a]);
+        // Level by level: the nodes of one level own disjoint ranges of tree_perm_, so their
+        // median splits run in parallel; children are appended afterwards, in order.
+        for (std::size_t level_begin = 0; level_begin < nodes_.size();) {
+            const std::size_t level_end = nodes_.size();
+#pragma omp parallel for schedule(dynamic, 1)
+            for (std::int64_t at = static_cast<std::int64_t>(level_begin);
+                 at < static_cast<std::int64_t>(level_end); ++at) {
+                Node& node = nodes_[static_cast<std::size_t>(at)];
+                const std::uint32_t b = node.begin, e = node.end;
+                if (e - b <= kLeafSize) {
+                    continue;
                 }
-            }
-            int axis = 0;
-            for (int a = 1; a < 3; ++a) {
-                if (hi[a] - lo[a] > hi[axis] - lo[axis]) {
-                    axis = a;
+                float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+                for (std::uint32_t p = b; p < e; ++p) {
+                    for (int a = 0; a < 3; ++a) {
+                        lo[a] = std::min(lo[a], xyz_[3 * tree_perm_[p] + a]);
+                        hi[a] = std::max(hi[a], xyz_[3 * tree_perm_[p] + a]);
+                    }
                 }
+                int axis = 0;
+                for (int a = 1; a < 3; ++a) {
+                    if (hi[a] - lo[a] > hi[axis] - lo[axis]) {
+                        axis = a;
+                    }
+                }
+                const std::uint32_t mid = b + (e - b) / 2;
+                std::nth_element(tree_perm_.begin() + b, tree_perm_.begin() + mid,
+                                 tree_perm_.begin() + e, [&](std::uint32_t u, std::uint32_t v) {
+                                     return xyz_[3 * u + axis] < xyz_[3 * v + axis];
+                                 });
+                node.axis = static_cast<std::uint8_t>(axis);
+                node.split = xyz_[3 * tree_perm_[mid] + axis];
             }
-            const std::uint32_t mid = b + (e - b) / 2;
-            std::nth_element(tree_perm_.begin() + b, tree_perm_.begin() + mid, tree_perm_.begin() + e,
-                             [&](std::uint32_t u, std::uint32_t v) {
-                                 return xyz_[3 * u + axis] < xyz_[3 * v + axis];
-                             });
-            nodes_[at].axis = static_cast<std::uint8_t>(axis);
-            nodes_[at].split = xyz_[3 * tree_perm_[mid] + axis];
-            nodes_[at].left = static_cast<std::int32_t>(nodes_.size());
-            nodes_.push_back({b, mid});
-            nodes_[at].right = static_cast<std::int32_t>(nodes_.size());
-            nodes_.push_back({mid, e});
+            for (std::size_t at = level_begin; at < level_end; ++at) {
+                const std::uint32_t b = nodes_[at].begin, e = nodes_[at].end;
+                if (e - b <= kLeafSize) {
+                    continue;
+                }
+                const std::uint32_t mid = b + (e - b) / 2;
+                nodes_[at].left = static_cast<std::int32_t>(nodes_.size());
+                nodes_.push_back({b, mid});
+                nodes_[at].right = static_cast<std::int32_t>(nodes_.size());
+                nodes_.push_back({mid, e});
+            }
+            level_begin = level_end;
         }
     });
 }
@@ -360,7 +375,8 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
     const double v[3] = {q.x, q.y, q.z};
     // Depth-first, near side first; a far side is skipped only when its half-space is strictly
     // farther than the current k-th distance (so index tie-breaks stay exact).
-    std::vector<std::pair<std::int32_t, double>> stack = {{0, 0.0}};
+    thread_local std::vector<std::pair<std::int32_t, double>> stack;
+    stack.assign(1, {0, 0.0});
     while (!stack.empty()) {
         const auto [at, bound] = stack.back();
         stack.pop_back();
@@ -426,6 +442,7 @@ void Grid::all_knn(std::size_t k,
                    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
                                             const std::vector<double>&)>& f) const {
     const std::size_t others = order_.empty() ? 0 : order_.size() - 1;
+    build_tree();  // here, not lazily inside the parallel sweep, so that its build is parallel too
     sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         thread_local std::vector<std::uint32_t> idx;
         thread_local std::vector<double> d2;
