@@ -355,7 +355,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
                       << (im.inputs ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
                                     : std::string(" [options] [-i IN] [-o OUT]"))
-                      << "\n\n"
+                      << "\n"
                       << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
                       << im.epilog;
             return kOk;
