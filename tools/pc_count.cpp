@@ -1,8 +1,6 @@
 // pc_count: report the clusters in `label`.
-#include <iostream>
 
 #include <pc/cli/tool.h>
-#include <pc/io/points.h>
 #include <pc/pipeline/steps.h>
 
 namespace pl = pc::pipeline;
@@ -20,10 +18,7 @@ int main(int argc, char** argv) {
                  [&](const std::string& name) { min_points = pl::preset(name).count_min_points; });
     tool.epilog("\nAn empty cloud counts 0. See docs/tools/pc_count.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        const pc::io::Blob blob = io.read();
-        const auto labels = blob.size() ? pc::io::labels(blob, "label") : std::vector<std::uint32_t>{};
-        const auto summary =
-            pc::segmentation::summarize_clusters(pc::io::xyz(blob), labels, min_points);
+        const auto summary = pl::summarize(io.read(), min_points);
         io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
                             : pl::count_report(summary, gt));
     });

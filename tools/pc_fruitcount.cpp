@@ -2,7 +2,6 @@
 // DBSCAN, recursive split, count), with the same labels as the piped chain.
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
-#include <pc/io/points.h>
 #include <pc/pipeline/steps.h>
 
 namespace pl = pc::pipeline;
@@ -88,10 +87,7 @@ int main(int argc, char** argv) {
         for (const auto& n : r.notes) {
             io.note(n);
         }
-        const auto labels = r.labelled.size() ? pc::io::labels(r.labelled, "label")
-                                              : std::vector<std::uint32_t>{};
-        const auto summary =
-            seg::summarize_clusters(pc::io::xyz(r.labelled), labels, chain.count_min_points);
+        const auto summary = pl::summarize(r.labelled, chain.count_min_points);
         if (!cloud_out.empty()) {
             pc::cli::write_cloud_file(cloud_out, r.labelled);
         }

@@ -23,7 +23,6 @@ DirectionStats direction(const Cloud& from, const Cloud& to, double tau) {
     }
     if (!to_empty) {
         const search::Grid grid(to, search::Grid::suggest_cell(to));
-        std::vector<double> local_all;
 #pragma omp parallel
         {
             std::vector<std::uint32_t> idx;

@@ -107,10 +107,8 @@ ReadResult parse_text(std::string_view bytes) {
     for (std::size_t i = 0; i < n; ++i) {
         const double* row = values.data() + i * columns;
         std::uint8_t* dst = blob.cloud.data.data() + i * step;
-        for (std::size_t c = 0; c < std::min<std::size_t>(columns, 4); ++c) {
-            if (columns == 6 && c == 3) {
-                break;
-            }
+        const std::size_t reals = columns == 6 ? 3 : columns;  // x y z (+ intensity)
+        for (std::size_t c = 0; c < reals; ++c) {
             const auto f = static_cast<float>(row[c]);
             std::memcpy(dst + 4 * c, &f, 4);
         }

@@ -21,9 +21,7 @@ std::string kept_note(const char* step, std::size_t kept, std::size_t total) {
 
 Step apply_color_filter(const io::Blob& in, const filters::ColorFilterParams& p) {
     p.validate();
-    if (in.size() > 0 && io::colour_fields(in).empty()) {
-        throw IoError("cloud has no colour (looked for rgb, rgba, red green blue, r g b)");
-    }
+    // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
     const auto kept = in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
     return {io::select(in, kept), kept_note("color_filter", kept.size(), in.size())};
 }
@@ -116,6 +114,12 @@ ChainResult run_chain(const io::Blob& in, const ChainParams& p) {
     }
     out.labelled = std::move(cur);
     return out;
+}
+
+segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min_points) {
+    const auto labels =
+        labelled.size() ? io::labels(labelled, "label") : std::vector<std::uint32_t>{};
+    return segmentation::summarize_clusters(io::xyz(labelled), labels, min_points);
 }
 
 std::string count_report(const segmentation::ClusterSummary& s, std::optional<double> gt) {

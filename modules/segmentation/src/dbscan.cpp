@@ -123,7 +123,10 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
             std::uint32_t best_t = kNone;
             for (std::uint32_t nc : nb) {
                 for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
-                    const double d2 = core[t] ? grid.dist2(s, t) : best + 1;
+                    if (!core[t]) {
+                        continue;
+                    }
+                    const double d2 = grid.dist2(s, t);
                     // d2 == best implies best is finite, so best_t is a real position.
                     if (d2 <= eps2 && (d2 < best || (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
                         best = d2;

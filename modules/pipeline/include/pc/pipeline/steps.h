@@ -45,6 +45,10 @@ struct ChainResult {
 };
 [[nodiscard]] ChainResult run_chain(const io::Blob& in, const ChainParams& p);
 
+/// The clusters of `label` in a labelled cloud (pc_count, pc_fruitcount); an empty cloud has none
+/// and needs no label field. Clusters with fewer than `min_points` points are not counted.
+[[nodiscard]] segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min_points);
+
 /// The count report of a labelled cloud, as JSON text (pc_count, pc_fruitcount):
 /// count, noise_points, small_clusters, clusters [{id, points, centroid, aabb {min, max}}],
 /// and with `gt`: gt, error (count − gt), recovery (count / gt).
