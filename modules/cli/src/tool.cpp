@@ -142,6 +142,13 @@ void write_cloud_file(const std::string& path, const io::Blob& blob) {
     file.commit();
 }
 
+void write_text_file(const std::string& path, std::string_view text) {
+    AtomicFile file(path);
+    io::FdSink sink(file.fd(), path);
+    sink.write(text.data(), text.size());
+    file.commit();
+}
+
 // ---------------------------------------------------------------------------------------------
 
 io::Blob Streams::read() { return read(input_); }
@@ -212,6 +219,7 @@ struct Tool::Impl {
     std::vector<std::string>* inputs = nullptr;
     std::string inputs_help;
     std::size_t min_inputs = 1;
+    bool reads = true;
 };
 
 Tool::Tool(std::string name, std::string summary, Output output) : impl_(std::make_unique<Impl>()) {
@@ -301,6 +309,8 @@ void Tool::presets(const std::vector<std::string>& names,
     };
 }
 
+void Tool::no_input() { impl_->reads = false; }
+
 void Tool::epilog(const std::string& text) { impl_->epilog = text; }
 
 void Tool::inputs(std::vector<std::string>* paths, const std::string& help, std::size_t min_count) {
@@ -317,16 +327,20 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
     io.tool_ = im.name;
     const bool cloud_out = im.output == Output::kCloud;
     po::options_description common("Common options");
-    common.add_options()("help,h", "print this help and exit")("version", "print the version")(
-        "input,i", po::value<std::string>(&io.input_)->default_value("-"),
-        "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)")(
-        "output,o", po::value<std::string>(&io.output_)->default_value("-"),
-        cloud_out ? "output cloud ('-' = stdout); written to a temporary file and renamed"
-                  : "output report ('-' = stdout)")(
-        "max-input-bytes",
-        po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
-        "refuse inputs larger than this")("verbose,v", po::bool_switch(&io.verbose_),
-                                          "notes and timings on stderr")(
+    common.add_options()("help,h", "print this help and exit")("version", "print the version");
+    if (im.reads) {
+        common.add_options()("input,i", po::value<std::string>(&io.input_)->default_value("-"),
+                             "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)");
+    }
+    common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
+                         cloud_out ? "output cloud ('-' = stdout); written to a temporary file and renamed"
+                                   : "output report ('-' = stdout)");
+    if (im.reads) {
+        common.add_options()("max-input-bytes",
+                             po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
+                             "refuse inputs larger than this");
+    }
+    common.add_options()("verbose,v", po::bool_switch(&io.verbose_), "notes and timings on stderr")(
         "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
     if (cloud_out) {
         common.add_options()("format", po::value<std::string>(&io.encoding_)->default_value("binary"),
@@ -353,8 +367,9 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                   vm);
         if (vm.count("help")) {
             std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
-                      << (im.inputs ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
-                                    : std::string(" [options] [-i IN] [-o OUT]"))
+                      << (im.inputs  ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
+                          : im.reads ? std::string(" [options] [-i IN] [-o OUT]")
+                                     : std::string(" [options] [-o OUT]"))
                       << "\n"
                       << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
                       << im.epilog;
@@ -400,7 +415,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
         }
         const bool reads_stdin =
             im.inputs ? std::find(im.inputs->begin(), im.inputs->end(), "-") != im.inputs->end()
-                      : io.input_ == "-";
+                      : im.reads && io.input_ == "-";
         if (reads_stdin && ::isatty(0)) {
             throw InvalidArgument("no input: standard input is a terminal; use -i FILE or a pipe");
         }

@@ -57,6 +57,8 @@ private:
 /// Writes a cloud to `path` (binary PCD, or binary PLY for a .ply name) through a temporary file
 /// renamed into place, so a failure never leaves a partial file.
 void write_cloud_file(const std::string& path, const io::Blob& blob);
+/// Writes text to `path` the same way (temporary file, fsync, rename).
+void write_text_file(const std::string& path, std::string_view text);
 
 /// Command-line front end shared by every tool: option binding with generated --help, the common
 /// options (-i -o -v -q --format --version), exit codes and error lines. See docs/architecture.md.
@@ -89,6 +91,8 @@ public:
     /// Positional input paths (`pc_extent a.ply b.pcd`). An explicit -i is the first input; when
     /// fewer than `min_count` paths are given, stdin ("-") comes first (`pc_compare B < A`).
     void inputs(std::vector<std::string>* paths, const std::string& help, std::size_t min_count = 1);
+    /// The tool makes its cloud instead of reading one (pc_synth): no -i, no --max-input-bytes.
+    void no_input();
     /// Extra text printed at the end of --help.
     void epilog(const std::string& text);
 

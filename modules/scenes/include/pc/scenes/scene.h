@@ -1,0 +1,66 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pc::scenes {
+
+using Vec3 = std::array<double, 3>;
+
+/// One fruit: a sphere. `bunch` numbers the group of touching fruit it hangs in (0-based).
+struct Fruit {
+    Vec3 centre{};
+    double radius = 0;
+    std::uint32_t bunch = 0;
+};
+
+/// A leaf: a flat disc. Leaves occlude fruit from the cameras and leak into exports as clutter.
+struct Leaf {
+    Vec3 centre{};
+    Vec3 normal{0, 0, 1};
+    double radius = 0;
+};
+
+/// The layout of a synthetic fruit tree, in metres, canopy centred on the origin.
+struct Scene {
+    std::vector<Fruit> fruits;
+    std::vector<Leaf> leaves;
+    Vec3 canopy{1, 1, 1};                  ///< half axes of the canopy ellipsoid
+    std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
+    std::uint32_t bunch_count = 0;
+};
+
+/// Parameters of make_scene(). species() fills them for the paper's three datasets.
+struct SceneParams {
+    std::uint32_t fruit_count = 152;   ///< fruit in the scene (the ground-truth count)
+    double fruit_radius = 0.035;       ///< mean fruit radius, m
+    double radius_spread = 0.1;        ///< radii uniform in radius·(1 ± spread)
+    std::uint32_t bunch_min = 1;       ///< fruit per bunch, uniform in [bunch_min, bunch_max]
+    std::uint32_t bunch_max = 1;
+    double touch_gap = 0.002;          ///< gap between touching fruit of a bunch, uniform in [0, this]
+    double separation = 0.03;          ///< least gap between fruit of different bunches
+    Vec3 canopy{1.0, 1.0, 0.8};        ///< half axes of the canopy ellipsoid, m
+    double shell = 0.5;                ///< bunches sit between this fraction of the canopy and its edge
+    double leaf_density = 300;         ///< leaves per m³ of canopy
+    double leaf_radius = 0.035;        ///< mean leaf radius, m
+    std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
+    std::uint64_t seed = 1;
+
+    void validate() const;  ///< throws pc::InvalidArgument naming the field
+};
+
+/// Names accepted by species(): peach, apple, plum.
+[[nodiscard]] const std::vector<std::string>& species_names();
+/// The paper's datasets in kind: peach (152 fruit, well separated), apple (283, bunches of 1-3),
+/// plum (745, bunches of 3-8 touching fruit). Throws pc::InvalidArgument for another name.
+[[nodiscard]] SceneParams species(std::string_view name);
+
+/// Places the fruit bunch by bunch (rejection sampling: fruit never overlap, touching fruit of a
+/// bunch are 0..touch_gap apart, other bunches at least `separation` away) and scatters leaves.
+/// Deterministic for a seed. Throws pc::InvalidArgument when the canopy cannot hold the fruit.
+[[nodiscard]] Scene make_scene(const SceneParams& params);
+
+}  // namespace pc::scenes

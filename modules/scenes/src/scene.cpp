@@ -1,0 +1,194 @@
+#include <pc/scenes/scene.h>
+
+#include <cmath>
+#include <unordered_map>
+
+#include <pc/core/error.h>
+#include <pc/scenes/random.h>
+
+namespace pc::scenes {
+
+namespace {
+
+void require(bool ok, const std::string& what) {
+    if (!ok) {
+        throw InvalidArgument("scene: " + what);
+    }
+}
+
+double dist2(const Vec3& a, const Vec3& b) {
+    const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return dx * dx + dy * dy + dz * dz;
+}
+
+/// Fruit bucketed by a cell at least as large as the widest interaction, for overlap checks.
+class FruitGrid {
+public:
+    explicit FruitGrid(double cell) : cell_(cell) {}
+    void add(const Fruit& f, std::uint32_t index) { cells_[key(f.centre)].push_back(index); }
+    template <class F>
+    void for_near(const Vec3& c, F&& visit) const {
+        const auto ix = coord(c[0]), iy = coord(c[1]), iz = coord(c[2]);
+        for (std::int64_t dx = -1; dx <= 1; ++dx) {
+            for (std::int64_t dy = -1; dy <= 1; ++dy) {
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells_.find(pack(ix + dx, iy + dy, iz + dz));
+                    if (it != cells_.end()) {
+                        for (auto i : it->second) {
+                            visit(i);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+private:
+    [[nodiscard]] std::int64_t coord(double v) const {
+        return static_cast<std::int64_t>(std::floor(v / cell_));
+    }
+    static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
+        const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
+        return u(x) | (u(y) << 21) | (u(z) << 42);
+    }
+    [[nodiscard]] std::uint64_t key(const Vec3& c) const { return pack(coord(c[0]), coord(c[1]), coord(c[2])); }
+
+    double cell_;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+}  // namespace
+
+void SceneParams::validate() const {
+    require(fruit_count >= 1 && fruit_count <= 1000000, "fruit_count must be in 1..1000000");
+    require(fruit_radius > 0 && std::isfinite(fruit_radius), "fruit_radius must be > 0");
+    require(radius_spread >= 0 && radius_spread < 1, "radius_spread must be in [0, 1)");
+    require(bunch_min >= 1 && bunch_min <= bunch_max && bunch_max <= 1000,
+            "bunch sizes must satisfy 1 <= bunch_min <= bunch_max <= 1000");
+    require(touch_gap >= 0 && std::isfinite(touch_gap), "touch_gap must be >= 0");
+    require(separation >= 0 && std::isfinite(separation), "separation must be >= 0");
+    for (double a : canopy) {
+        require(a > 0 && std::isfinite(a), "canopy half axes must be > 0");
+    }
+    require(shell >= 0 && shell < 1, "shell must be in [0, 1)");
+    require(leaf_density >= 0 && leaf_density <= 1e6, "leaf_density must be in [0, 1e6]");
+    require(leaf_radius > 0 && std::isfinite(leaf_radius), "leaf_radius must be > 0");
+}
+
+const std::vector<std::string>& species_names() {
+    static const std::vector<std::string> names = {"peach", "apple", "plum"};
+    return names;
+}
+
+SceneParams species(std::string_view name) {
+    SceneParams p;
+    if (name == "peach") {  // 152 fruit, well separated (paper Table 2)
+        p.fruit_count = 152;
+        p.fruit_radius = 0.035;
+        p.separation = 0.03;
+        p.canopy = {1.0, 1.0, 0.8};
+        p.fruit_rgb = {240, 165, 95};
+        return p;
+    }
+    if (name == "apple") {  // 283 fruit, moderately clustered: bunches of 1 to 3, 0-15 mm apart
+        p.fruit_count = 283;
+        p.fruit_radius = 0.035;
+        p.bunch_max = 3;
+        p.touch_gap = 0.015;  // fruit of a bunch hang close, only some touch
+        p.separation = 0.02;
+        p.canopy = {1.2, 1.2, 1.0};
+        p.fruit_rgb = {232, 118, 88};
+        return p;
+    }
+    if (name == "plum") {  // 745 fruit, dense bunches of 3 to 8 touching fruit
+        p.fruit_count = 745;
+        p.fruit_radius = 0.017;
+        p.bunch_min = 3;
+        p.bunch_max = 8;
+        p.separation = 0.02;
+        p.canopy = {1.0, 1.0, 0.9};
+        p.fruit_rgb = {195, 105, 155};
+        return p;
+    }
+    throw InvalidArgument("--species: unknown species '" + std::string(name) + "' (peach, apple, plum)");
+}
+
+Scene make_scene(const SceneParams& p) {
+    p.validate();
+    Rng rng(p.seed, 1);
+    Scene s;
+    s.canopy = p.canopy;
+    s.fruit_rgb = p.fruit_rgb;
+    const double r_max = p.fruit_radius * (1 + p.radius_spread);
+    FruitGrid grid(2 * r_max + std::max(p.separation, p.touch_gap));
+    const auto inside_canopy = [&](const Vec3& c, double scale) {
+        double q = 0;
+        for (int a = 0; a < 3; ++a) {
+            q += (c[a] / p.canopy[a]) * (c[a] / p.canopy[a]);
+        }
+        return q <= scale * scale;
+    };
+    const auto fits = [&](const Vec3& c, double r, std::uint32_t bunch) {
+        bool ok = true;
+        grid.for_near(c, [&](std::uint32_t i) {
+            const Fruit& f = s.fruits[i];
+            const double need = r + f.radius + (f.bunch == bunch ? 0.0 : p.separation);
+            ok = ok && dist2(c, f.centre) >= need * need;
+        });
+        return ok;
+    };
+    const auto place = [&](const Vec3& c, double r, std::uint32_t bunch) {
+        s.fruits.push_back({c, r, bunch});
+        grid.add(s.fruits.back(), static_cast<std::uint32_t>(s.fruits.size() - 1));
+    };
+    const auto radius = [&] { return p.fruit_radius * (1 + p.radius_spread * rng.uniform(-1, 1)); };
+    const double shell3 = p.shell * p.shell * p.shell;
+    while (s.fruits.size() < p.fruit_count) {
+        const auto left = p.fruit_count - s.fruits.size();
+        const auto size = std::min<std::uint64_t>(left, p.bunch_min + rng.below(p.bunch_max - p.bunch_min + 1));
+        const std::uint32_t bunch = s.bunch_count;
+        const std::size_t first = s.fruits.size();
+        for (int attempt = 0;; ++attempt) {
+            if (attempt == 20000) {
+                throw InvalidArgument("scene: cannot place " + std::to_string(p.fruit_count) +
+                                      " fruit of radius " + format_number(p.fruit_radius) +
+                                      " in the canopy (placed " + std::to_string(first) +
+                                      "); enlarge the canopy or lower the fruit count");
+            }
+            const Vec3 d = rng.direction();
+            const double u = std::cbrt(rng.uniform(shell3, 1.0));  // uniform in the shell's volume
+            const Vec3 c{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]};
+            const double r = radius();
+            if (fits(c, r, bunch)) {
+                place(c, r, bunch);
+                break;
+            }
+        }
+        for (std::uint64_t k = 1; k < size; ++k) {
+            for (int attempt = 0; attempt < 200; ++attempt) {
+                const Fruit m = s.fruits[first + rng.below(s.fruits.size() - first)];
+                const Vec3 d = rng.direction();
+                const double r = radius();
+                const double at = m.radius + r + rng.uniform(0, p.touch_gap);
+                const Vec3 c{m.centre[0] + at * d[0], m.centre[1] + at * d[1], m.centre[2] + at * d[2]};
+                if (inside_canopy(c, 1.1) && fits(c, r, bunch)) {
+                    place(c, r, bunch);
+                    break;
+                }
+            }  // a bunch that cannot grow stays smaller; the next bunch takes the remaining fruit
+        }
+        ++s.bunch_count;
+    }
+    const double volume = 4.0 / 3.0 * 3.141592653589793 * p.canopy[0] * p.canopy[1] * p.canopy[2];
+    const auto leaves = static_cast<std::uint64_t>(std::llround(p.leaf_density * volume));
+    for (std::uint64_t k = 0; k < leaves; ++k) {
+        const Vec3 d = rng.direction();
+        const double u = std::cbrt(rng.uniform());
+        s.leaves.push_back({{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]},
+                            rng.direction(),
+                            p.leaf_radius * rng.uniform(0.7, 1.3)});
+    }
+    return s;
+}
+
+}  // namespace pc::scenes

@@ -1,0 +1,169 @@
+// pc_eval: score a labelled cloud against ground truth (count, recovery, matching, P/R/F1, merges,
+// splits).
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <pc/cli/tool.h>
+#include <pc/core/error.h>
+#include <pc/evaluation/instances.h>
+#include <pc/io/points.h>
+#include <pc/pipeline/presets.h>
+
+namespace ev = pc::evaluation;
+using nlohmann::ordered_json;
+
+namespace {
+
+struct Truth {
+    std::vector<ev::TruthFruit> fruits;
+    std::size_t fruit_count = 0;
+};
+
+/// Reads {"fruit_count": N, "fruits": [{"id", "centre": [x, y, z], "radius"}, ...]} (pc_synth --truth).
+Truth read_truth(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) {
+        throw pc::IoError(path + ": cannot open the ground truth");
+    }
+    Truth t;
+    try {
+        const auto j = nlohmann::json::parse(f);
+        for (const auto& x : j.at("fruits")) {
+            ev::TruthFruit fr;
+            fr.id = x.at("id").get<std::uint32_t>();
+            fr.centre = x.at("centre").get<std::array<double, 3>>();
+            fr.radius = x.at("radius").get<double>();
+            if (fr.id == 0 || !(fr.radius > 0) || !std::isfinite(fr.centre[0] + fr.centre[1] + fr.centre[2])) {
+                throw pc::IoError("fruit ids must be > 0, radii > 0 and centres finite");
+            }
+            t.fruits.push_back(fr);
+        }
+        t.fruit_count = j.contains("fruit_count") ? j.at("fruit_count").get<std::size_t>() : t.fruits.size();
+    } catch (const nlohmann::json::exception& e) {
+        throw pc::IoError(path + ": not a ground-truth file (" + std::string(e.what()) + ")");
+    } catch (const pc::IoError& e) {
+        throw pc::IoError(path + ": " + e.what());
+    }
+    return t;
+}
+
+std::string num(double v) { return std::isfinite(v) ? pc::format_number(v) : ""; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    ev::InstanceParams params;
+    std::string truth_path, label_field = "label", gt_field = "gt_instance", match = "auto", name;
+    std::optional<double> gt;
+    bool csv = false, markdown = false;
+    pc::cli::Tool tool("pc_eval",
+                       "score a labelled cloud against ground truth: count, recovery, one-to-one matching, "
+                       "precision, recall, F1, merged clusters, split fruit",
+                       pc::cli::Output::kText);
+    tool.option("truth", &truth_path, "ground truth JSON (pc_synth --truth): fruit count, centres, radii");
+    tool.option("label", &label_field, "field with the predicted instances (0 = noise)");
+    tool.option("gt-field", &gt_field, "field with the true instance per point (0 = not fruit)");
+    tool.option("match", &match, "auto (overlap when the cloud has --gt-field, else centroid), overlap, centroid");
+    tool.option("min-iou", &params.min_iou, "overlap: a prediction matches a fruit when IoU > this (>= 0.5)");
+    tool.option("share", &params.share, "merge/split: more than this share of a fruit / of a prediction");
+    tool.option("radius-factor", &params.radius_factor, "centroid: match within this x the fruit radius");
+    tool.option("min-cluster-size", &params.min_points, "predictions with fewer points count as noise");
+    tool.option("gt", &gt, "ground-truth count (default: --truth's fruit_count, else the ids present)");
+    tool.option("name", &name, "row name in the report (default: the input's name)");
+    tool.flag("csv", &csv, "one CSV row with a header instead of JSON");
+    tool.flag("markdown", &markdown, "a markdown table row with a header instead of JSON");
+    tool.presets(pc::pipeline::preset_names(), [&](const std::string& n) {
+        params.min_points = static_cast<std::uint32_t>(pc::pipeline::preset(n).count_min_points);
+    });
+    tool.epilog("\nDefinitions of every score: docs/tools/pc_eval.md.\n");
+    return tool.run(argc, argv, [&](pc::cli::Streams& io) {
+        if (csv && markdown) {
+            throw pc::InvalidArgument("--csv and --markdown exclude each other");
+        }
+        if (match != "auto" && match != "overlap" && match != "centroid") {
+            throw pc::InvalidArgument("--match must be auto, overlap or centroid, got '" + match + "'");
+        }
+        if (gt && (!(*gt >= 0) || *gt != std::floor(*gt) || *gt > 1e12)) {
+            throw pc::InvalidArgument("--gt must be a whole number >= 0");
+        }
+        params.validate();
+        const pc::io::Blob blob = io.read();
+        const std::string input = io.input_name();
+        const bool has_gt_field = pc::io::find_field(blob, gt_field) != nullptr;
+        const std::string mode = match == "auto" ? (has_gt_field ? "overlap" : "centroid") : match;
+        if (mode == "centroid" && truth_path.empty()) {
+            if (match == "centroid") {
+                throw pc::InvalidArgument("--match centroid needs --truth");
+            }
+            throw pc::IoError(input + ": no '" + gt_field + "' field (give --truth to match by centroid)");
+        }
+        const Truth truth = truth_path.empty() ? Truth{} : read_truth(truth_path);
+        const auto labels = [&](const std::string& field) {
+            try {
+                return blob.size() ? pc::io::labels(blob, field) : std::vector<std::uint32_t>{};
+            } catch (const pc::IoError& e) {
+                throw pc::IoError(input + ": " + e.what());
+            }
+        };
+        const std::vector<std::uint32_t> predicted = labels(label_field);
+        std::size_t gt_count = gt ? static_cast<std::size_t>(*gt) : truth.fruit_count;
+        ev::InstanceScores s;
+        if (mode == "overlap") {
+            if (!has_gt_field) {
+                throw pc::IoError(input + ": no '" + gt_field + "' field for overlap matching");
+            }
+            s = ev::score_by_overlap(predicted, labels(gt_field), gt_count, params);
+        } else {
+            s = ev::score_by_centroid(pc::io::xyz(blob), predicted, truth.fruits, gt_count, params);
+        }
+        const std::string row = name.empty() ? input : name;
+        const std::size_t fp = s.count - s.true_positives, missed = s.gt_count - s.true_positives;
+        std::ostringstream out;
+        if (csv) {
+            out << "name,match,count,gt_count,recovery,true_positives,false_positives,missed,precision,recall,f1,"
+                   "merged,split\n"
+                << row << ',' << mode << ',' << s.count << ',' << s.gt_count << ',' << num(s.recovery) << ','
+                << s.true_positives << ',' << fp << ',' << missed << ',' << num(s.precision) << ','
+                << num(s.recall) << ',' << num(s.f1) << ',' << s.merged.size() << ',' << s.split.size() << '\n';
+        } else if (markdown) {
+            char buf[256];
+            std::snprintf(buf, sizeof buf, "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n",
+                          row.c_str(), s.count, s.gt_count, s.recovery, s.precision, s.recall, s.f1,
+                          s.merged.size(), s.split.size());
+            out << "| Cloud | Count | GT | Recovery | Precision | Recall | F1 | Merged | Split |\n"
+                << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
+                << buf;
+        } else {
+            ordered_json j;
+            j["name"] = row;
+            j["input"] = input;
+            j["match"] = mode;
+            j["count"] = s.count;
+            j["gt_count"] = s.gt_count;
+            j["recovery"] = std::isfinite(s.recovery) ? ordered_json(s.recovery) : ordered_json(nullptr);
+            j["true_positives"] = s.true_positives;
+            j["false_positives"] = fp;
+            j["missed"] = missed;
+            j["precision"] = s.precision;
+            j["recall"] = s.recall;
+            j["f1"] = s.f1;
+            j["merged"] = s.merged.size();
+            j["split"] = s.split.size();
+            j["merged_labels"] = s.merged;
+            j["split_fruit"] = s.split;
+            ordered_json m = ordered_json::array();
+            for (const auto& x : s.matches) {
+                m.push_back(mode == "overlap"
+                                ? ordered_json{{"label", x.label}, {"fruit", x.fruit}, {"points", x.overlap}, {"iou", x.iou}}
+                                : ordered_json{{"label", x.label}, {"fruit", x.fruit}, {"distance", x.overlap}});
+            }
+            j["matches"] = m;
+            out << j.dump(1) << '\n';
+        }
+        io.write_text(out.str());
+    });
+}
