@@ -12,7 +12,9 @@ int main(int argc, char** argv) {
                        "thresholds; relabel 1..N");
     tool.option("rule", "paper", [&](const std::string& s) { p.rule = seg::parse_split_rule(s); },
                 "paper: medians over all clusters; script: size median over clusters with more "
-                "than --median-min-points, volume median over clusters within --size-band of it");
+                "than --median-min-points, volume median over clusters within --size-band of it; "
+                "cores: cut each cluster at the necks between its solid cores (no medians, no k-means)");
+    tool.option("core-fraction", &p.core_fraction, "cores rule: core depth as a fraction of the estimated fruit radius");
     tool.option("size-factor", &p.size_factor, "split needs points > this x median size");
     tool.option("volume-factor", &p.volume_factor, "and AABB volume > this x median volume");
     tool.option("median-min-points", &p.median_min_points,

@@ -82,11 +82,14 @@ Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSpli
     const auto labels = io::labels(in, "label");
     const segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::xyz(in), labels, p);
+    const std::string how = p.rule == segmentation::SplitRule::kCores
+                                ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
+                                      ", estimated fruit radius " + format_number(r.fruit_radius) + ")"
+                                : "splits (thresholds: points > " + format_number(r.size_threshold) +
+                                      ", AABB volume > " + format_number(r.volume_threshold) + ")";
     return {io::with_field(in, "label", r.labels),
-            "recursive_split: " + std::to_string(r.splits) + " splits, " +
-                std::to_string(r.cluster_count) + " clusters (thresholds: points > " +
-                format_number(r.size_threshold) + ", AABB volume > " +
-                format_number(r.volume_threshold) + ")"};
+            "recursive_split: " + std::to_string(r.splits) + " " + how + ", " + std::to_string(r.cluster_count) +
+                " clusters"};
 }
 
 ChainResult run_chain(const io::Blob& in, const ChainParams& p) {

@@ -6,6 +6,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/segmentation/core_split.h>
 #include <pc/segmentation/kmeans.h>
 
 namespace pc::segmentation {
@@ -38,7 +39,10 @@ SplitRule parse_split_rule(const std::string& text) {
     if (text == "script") {
         return SplitRule::kScript;
     }
-    throw InvalidArgument("--rule: expected paper or script, got '" + text + "'");
+    if (text == "cores") {
+        return SplitRule::kCores;
+    }
+    throw InvalidArgument("--rule: expected paper, script or cores, got '" + text + "'");
 }
 
 void RecursiveSplitParams::validate() const {
@@ -90,6 +94,18 @@ RecursiveSplitResult recursive_split(const Cloud& cloud,
                                      std::span<const std::uint32_t> labels,
                                      const RecursiveSplitParams& params) {
     params.validate();
+    if (params.rule == SplitRule::kCores) {
+        CoreSplitResult c = core_split(cloud, labels, {.core_fraction = params.core_fraction,
+                                                       .min_cluster_size = params.min_cluster_size});
+        RecursiveSplitResult r;
+        r.labels = std::move(c.labels);
+        r.cluster_count = c.cluster_count;
+        r.splits = c.splits;
+        r.size_threshold = r.volume_threshold = std::nan("");
+        r.spacing = c.spacing;
+        r.fruit_radius = c.fruit_radius;
+        return r;
+    }
     const std::size_t n = cloud.size();
     if (labels.size() != n) {
         throw InvalidArgument("recursive_split: labels must be one per point (" +

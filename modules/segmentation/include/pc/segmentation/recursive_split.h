@@ -14,9 +14,11 @@ enum class SplitRule {
     kPaper,   ///< medians of point count and AABB volume over all clusters (paper 2.3.3)
     kScript,  ///< the author script: size median over clusters with > median_min_points points;
               ///< volume median over clusters within ±size_band of that median size
+    kCores,   ///< not a median rule: each cluster is cut at the necks between its solid cores
+              ///< (core_split(), distance-transform watershed); no k-means
 };
 
-/// Parses "paper" or "script"; throws pc::InvalidArgument.
+/// Parses "paper", "script" or "cores"; throws pc::InvalidArgument.
 [[nodiscard]] SplitRule parse_split_rule(const std::string& text);
 
 /// Parameters of recursive_split(). A cluster is split iff
@@ -31,6 +33,7 @@ struct RecursiveSplitParams {
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise (0)
     std::uint32_t restarts = 6;  ///< k-means++ restarts per split (k = 2)
     std::uint64_t seed = 0;      ///< k-means seed; each cluster's engine also mixes its first index
+    double core_fraction = 0.5;  ///< cores rule: core depth as a fraction of the fruit radius
 
     void validate() const;
 };
@@ -41,6 +44,8 @@ struct RecursiveSplitResult {
     std::uint32_t splits = 0;       ///< successful k = 2 splits
     double size_threshold = 0;      ///< points above which a cluster may split
     double volume_threshold = 0;    ///< AABB volume above which a cluster may split
+    double spacing = 0;             ///< cores rule: median nearest-neighbour distance
+    double fruit_radius = 0;        ///< cores rule: estimated fruit radius
 };
 
 /// Recursive geometric splitting (paper 2.3.3): clusters violating both thresholds are split by

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <pc/core/cloud.h>
+
+namespace pc::segmentation {
+
+/// Parameters of core_split(). Lengths are multiples of the point spacing s (the median distance
+/// from a point to its nearest other point) or of the fruit radius R estimated from the clusters,
+/// so the result does not change when the cloud is scaled or rotated.
+struct CoreSplitParams {
+    double core_fraction = 0.5;      ///< a core point is deeper than this × R
+    double boundary_radius = 2.0;    ///< × s: the neighbourhood that decides whether a point is inside
+    double boundary_offset = 0.2;    ///< boundary iff |mean neighbour offset| > this × the radius
+    double isotropy = 0.5;           ///< ... or the neighbours' smallest/largest variance < this (a sheet)
+    double link = 1.75;              ///< × s: points closer than this are adjacent (lattice diagonals: √3)
+    double min_core_fraction = 0.1;  ///< cores with fewer points than this × an ideal core are ignored
+    std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
+
+    void validate() const;
+};
+
+struct CoreSplitResult {
+    std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
+    std::uint32_t cluster_count = 0;
+    std::uint32_t splits = 0;     ///< clusters cut into two or more parts
+    double spacing = 0;           ///< s
+    double fruit_radius = 0;      ///< R: the median over clusters of their greatest depth
+    std::vector<float> depth;     ///< per point: distance to the nearest boundary point (0 for noise)
+};
+
+/// Separates touching objects inside each cluster at the necks between their solid cores: a
+/// point is on the boundary when its neighbours (same cluster, within boundary_radius) lie mostly
+/// to one side; its depth is the distance to the nearest boundary point (a point-cloud distance
+/// transform). The fruit radius R is the median over clusters of their greatest depth (a bunch of
+/// touching fruit is no deeper than one fruit). Points deeper than core_fraction × R form cores
+/// (connected through `link`); a cluster with two or more cores is flooded from them in order of
+/// decreasing depth (marker watershed), and every point takes the part that reaches it first.
+/// Hollow clouds (surfaces only) have no depth and are left as they are. Label 0 stays noise;
+/// non-finite points become noise. Deterministic.
+[[nodiscard]] CoreSplitResult core_split(const Cloud& cloud,
+                                         std::span<const std::uint32_t> labels,
+                                         const CoreSplitParams& params);
+
+}  // namespace pc::segmentation

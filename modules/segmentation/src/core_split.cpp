@@ -1,0 +1,256 @@
+#include <pc/segmentation/core_split.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <string>
+#include <tuple>
+
+#include <Eigen/Eigenvalues>
+
+#include <pc/core/error.h>
+#include <pc/core/stats.h>
+#include <pc/search/grid.h>
+#include <pc/segmentation/recursive_split.h>
+
+namespace pc::segmentation {
+
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+/// The median distance from a point to its nearest other point, over at most ~20000 points
+/// taken at a fixed stride (deterministic).
+double median_spacing(const Cloud& pts, const search::Grid& grid) {
+    const std::size_t stride = std::max<std::size_t>(1, pts.size() / 20000);
+    std::vector<double> d;
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    for (std::size_t i = 0; i < pts.size(); i += stride) {
+        grid.knn(static_cast<std::uint32_t>(i), 1, idx, d2);
+        if (!d2.empty() && d2[0] > 0) {
+            d.push_back(std::sqrt(d2[0]));
+        }
+    }
+    return d.empty() ? 0 : median(d);
+}
+
+std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
+    while (parent[x] != x) {
+        parent[x] = parent[parent[x]];
+        x = parent[x];
+    }
+    return x;
+}
+
+}  // namespace
+
+void CoreSplitParams::validate() const {
+    const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
+    if (!in(core_fraction, 0.01, 0.99) || !in(boundary_radius, 1, 20) || !in(boundary_offset, 0.01, 0.99) ||
+        !in(link, 1, 10) || !in(min_core_fraction, 0, 1)) {
+        throw InvalidArgument("core_split: core_fraction must be in [0.01, 0.99], boundary_radius in [1, 20], "
+                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction in [0, 1]; got " +
+                              format_number(core_fraction) + ", " + format_number(boundary_radius) + ", " +
+                              format_number(boundary_offset) + ", " + format_number(link) + ", " +
+                              format_number(min_core_fraction));
+    }
+}
+
+CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> labels, const CoreSplitParams& params) {
+    params.validate();
+    const std::size_t n = cloud.size();
+    if (labels.size() != n) {
+        throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
+                              std::to_string(labels.size()));
+    }
+    // The clustered points, compacted: pts[k] is cloud[index[k]] with cluster lab[k] (dense 0..C-1).
+    std::uint32_t max_label = 0;
+    for (auto l : labels) {
+        max_label = std::max(max_label, l);
+    }
+    std::vector<std::uint32_t> dense(std::size_t{max_label} + 1, kNone);
+    Cloud pts;
+    std::vector<std::uint32_t> index, lab;
+    std::uint32_t clusters = 0;
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (labels[i] != 0 && is_finite(cloud[i])) {
+            if (dense[labels[i]] == kNone) {
+                dense[labels[i]] = clusters++;
+            }
+            pts.push_back(cloud[i]);
+            index.push_back(i);
+            lab.push_back(dense[labels[i]]);
+        }
+    }
+    const std::size_t m = pts.size();
+    CoreSplitResult r;
+    r.depth.assign(n, 0.0f);
+    std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
+    std::vector<std::uint32_t> parts(clusters, 1);
+    if (m >= 2) {
+        const search::Grid probe(pts, search::Grid::suggest_cell(pts));
+        r.spacing = median_spacing(pts, probe);
+    }
+    if (r.spacing > 0) {
+        const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
+        const search::Grid grid(pts, std::max(rb, link));
+        // 1. Boundary: neighbours of the same cluster lie mostly to one side.
+        std::vector<std::uint8_t> boundary(m, 0);
+#pragma omp parallel for schedule(dynamic, 4096)
+        for (std::int64_t k = 0; k < static_cast<std::int64_t>(m); ++k) {
+            const auto& p = pts[k];
+            // Offsets from p: their mean (one-sidedness) and their second moments (flatness).
+            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+            Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
+            std::size_t count = 0;
+            grid.for_each_within(p, rb, [&](std::uint32_t j, double) {
+                if (lab[j] == lab[k]) {
+                    const Eigen::Vector3d o(double{pts[j].x} - p.x, double{pts[j].y} - p.y, double{pts[j].z} - p.z);
+                    sum += o;
+                    second += o * o.transpose();
+                    ++count;
+                }
+            });
+            if (count < 8) {
+                boundary[k] = 1;
+                continue;
+            }
+            const Eigen::Vector3d mean = sum / static_cast<double>(count);
+            const Eigen::Matrix3d cov = second / static_cast<double>(count) - mean * mean.transpose();
+            const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+            // A solid's interior: neighbours all around (centred) and in every direction (isotropic).
+            boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
+        }
+        // 2. Depth: distance to the nearest boundary point.
+        Cloud edge;
+        for (std::size_t k = 0; k < m; ++k) {
+            if (boundary[k]) {
+                edge.push_back(pts[k]);
+            }
+        }
+        std::vector<float> depth(m, 0.0f);
+        if (!edge.empty()) {
+            const search::Grid edges(edge, search::Grid::suggest_cell(edge));
+#pragma omp parallel
+            {
+                std::vector<std::uint32_t> idx;
+                std::vector<double> d2;
+#pragma omp for schedule(dynamic, 4096)
+                for (std::int64_t k = 0; k < static_cast<std::int64_t>(m); ++k) {
+                    if (!boundary[k]) {
+                        edges.knn_point(pts[k], 1, idx, d2);
+                        depth[k] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
+                    }
+                }
+            }
+        }
+        // 3. The fruit radius: the median over clusters of their greatest depth.
+        std::vector<double> deepest(clusters, 0.0);
+        for (std::size_t k = 0; k < m; ++k) {
+            deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
+            r.depth[index[k]] = depth[k];
+        }
+        r.fruit_radius = median(deepest);
+        const double core_depth = params.core_fraction * r.fruit_radius;
+        // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
+        std::vector<std::uint32_t> parent(m);
+        std::iota(parent.begin(), parent.end(), 0u);
+        const auto is_core = [&](std::size_t k) { return core_depth > 0 && depth[k] >= core_depth; };
+        for (std::size_t k = 0; k < m; ++k) {
+            if (is_core(k)) {
+                grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
+                    if (j != k && lab[j] == lab[k] && is_core(j)) {
+                        const auto a = find(parent, static_cast<std::uint32_t>(k)), b = find(parent, j);
+                        parent[std::max(a, b)] = std::min(a, b);
+                    }
+                });
+            }
+        }
+        std::vector<std::uint32_t> core_size(m, 0);
+        for (std::size_t k = 0; k < m; ++k) {
+            if (is_core(k)) {
+                ++core_size[find(parent, static_cast<std::uint32_t>(k))];
+            }
+        }
+        const double ideal = 4.0 / 3.0 * 3.141592653589793 * std::pow(core_depth / s, 3);
+        const auto min_core = static_cast<std::uint32_t>(std::max(1.0, std::floor(params.min_core_fraction * ideal)));
+        std::vector<std::uint32_t> core_id(m, kNone);  // root -> part number within its cluster
+        std::vector<std::uint32_t> cores(clusters, 0);
+        for (std::size_t k = 0; k < m; ++k) {  // in point order: deterministic numbering
+            const auto root = is_core(k) ? find(parent, static_cast<std::uint32_t>(k)) : kNone;
+            if (root != kNone && core_size[root] >= min_core && core_id[root] == kNone) {
+                core_id[root] = cores[lab[k]]++;
+            }
+        }
+        // 5. Marker watershed from the cores of clusters with two or more, deepest points first.
+        std::vector<std::uint32_t> assigned(m, kNone);
+        using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
+        std::priority_queue<Item> heap;
+        std::uint64_t seq = 0;
+        for (std::size_t k = 0; k < m; ++k) {
+            if (cores[lab[k]] >= 2 && is_core(k)) {
+                const auto id = core_id[find(parent, static_cast<std::uint32_t>(k))];
+                if (id != kNone) {
+                    assigned[k] = id;
+                    heap.emplace(depth[k], ~seq++, static_cast<std::uint32_t>(k));
+                }
+            }
+        }
+        while (!heap.empty()) {
+            const std::uint32_t k = std::get<2>(heap.top());
+            heap.pop();
+            grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
+                if (assigned[j] == kNone && lab[j] == lab[k]) {
+                    assigned[j] = assigned[k];
+                    heap.emplace(depth[j], ~seq++, j);
+                }
+            });
+        }
+        // Points the flood could not reach (apart by more than `link`): the part of the nearest
+        // assigned point of their cluster, found by repeating the flood with growing steps.
+        for (double step = 2 * link; step <= grid.cell(); step *= 2) {
+            bool left = false;
+            for (std::size_t k = 0; k < m; ++k) {
+                if (cores[lab[k]] >= 2 && assigned[k] == kNone) {
+                    double best = std::numeric_limits<double>::infinity();
+                    grid.for_each_within(pts[k], step, [&](std::uint32_t j, double d2) {
+                        if (assigned[j] != kNone && lab[j] == lab[k] && (d2 < best || (d2 == best && assigned[j] < part[k]))) {
+                            best = d2;
+                            part[k] = assigned[j];
+                        }
+                    });
+                    left = left || best == std::numeric_limits<double>::infinity();
+                }
+            }
+            if (!left) {
+                break;
+            }
+        }
+        for (std::size_t k = 0; k < m; ++k) {
+            if (assigned[k] != kNone) {
+                part[k] = assigned[k];
+            }
+        }
+        for (std::uint32_t c = 0; c < clusters; ++c) {
+            parts[c] = std::max(1u, cores[c]);
+            r.splits += cores[c] >= 2;
+        }
+    }
+    // Labels: cluster c's parts get consecutive numbers, then renumbered by size.
+    std::vector<std::uint32_t> first(clusters + 1, 0);
+    for (std::uint32_t c = 0; c < clusters; ++c) {
+        first[c + 1] = first[c] + parts[c];
+    }
+    std::vector<std::uint32_t> out(n, 0);
+    for (std::size_t k = 0; k < m; ++k) {
+        out[index[k]] = first[lab[k]] + std::min(part[k], parts[lab[k]] - 1) + 1;
+    }
+    r.cluster_count = renumber_by_size(out, params.min_cluster_size);
+    r.labels = std::move(out);
+    return r;
+}
+
+}  // namespace pc::segmentation
