@@ -51,12 +51,9 @@ int main(int argc, char** argv) {
     tool.option("drop-percentile", &knn.drop_percentile, "kNN outlier: drop mean distance >= P(100-P)");
     tool.option("std-mul", &knn.std_mul, "kNN outlier: instead drop mean distance > mean + M sigma");
     tool.flag("no-knn", &no_knn, "skip the kNN outlier filter");
-    tool.option("eps", pc::format_number(chain.dbscan.eps), [&](const std::string& s) {
-        chain.eps_auto = s == "auto";
-        if (!chain.eps_auto) {
-            chain.dbscan.eps = pc::cli::parse_double("eps", s);
-        }
-    }, "DBSCAN: neighbour iff distance <= eps, or 'auto'");
+    tool.option("eps", pc::format_number(chain.dbscan.eps),
+                [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
+                "DBSCAN: neighbour iff distance <= eps; 'auto' (knee), 'spacing' or 'Nxs' (N x point spacing)");
     tool.option("min-points", &chain.dbscan.min_points, "DBSCAN: core needs this many, itself included");
     tool.option("rule", "paper", [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
                 "split: paper, script or cores");

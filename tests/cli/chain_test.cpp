@@ -84,7 +84,7 @@ TEST(Chain, FieldsPassThroughTheWholeChain) {
 TEST(PcDbscan, EpsAutoReportsTheChosenValueWithVerbose) {
     const RunResult r = run_shell("@pc_convert -i " + kSample + " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto --min-points 4 -v | @pc_count --plain");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps auto = "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps auto (knee) = "), std::string::npos) << r.err;
 }
 
 TEST(PcDbscan, BadEpsIsAUsageError) {

@@ -1,12 +1,45 @@
 #include <pc/pipeline/presets.h>
 
+#include <charconv>
+#include <cmath>
+
 #include <pc/core/error.h>
 
 namespace pc::pipeline {
 
+namespace {
+
+double cli_number(const std::string& option, const std::string& text) {
+    double v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
+        throw InvalidArgument("--" + option + ": expected a number, 'auto', 'spacing' or 'Nxs', got '" + text + "'");
+    }
+    return v;
+}
+
+}  // namespace
+
 const std::vector<std::string>& preset_names() {
     static const std::vector<std::string> names = {"paper-dense", "paper-sparse", "invnerfseg"};
     return names;
+}
+
+void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule) {
+    if (text == "auto") {
+        rule.mode = EpsRule::Mode::kKnee;
+    } else if (text == "spacing") {
+        rule.mode = EpsRule::Mode::kSpacing;
+    } else if (text.size() > 2 && text.ends_with("xs")) {
+        rule.mode = EpsRule::Mode::kSpacing;
+        rule.factor = cli_number("eps", text.substr(0, text.size() - 2));
+        if (!(rule.factor > 0)) {
+            throw InvalidArgument("--eps: the spacing factor must be > 0, got '" + text + "'");
+        }
+    } else {
+        rule.mode = EpsRule::Mode::kFixed;
+        dbscan.eps = cli_number("eps", text);
+    }
 }
 
 ChainParams preset(std::string_view name) {

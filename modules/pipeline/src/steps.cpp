@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
+#include <pc/search/grid.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
 
@@ -60,12 +61,20 @@ Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, c
     return {io::select(in, kept), note};
 }
 
-Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, bool eps_auto) {
+Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRule& eps) {
     const Cloud cloud = io::xyz(in);
     std::string note;
-    if (eps_auto) {
+    if (eps.mode == EpsRule::Mode::kKnee) {
         p.eps = segmentation::estimate_eps(cloud, p.min_points);
-        note = "dbscan: eps auto = " + format_number(p.eps) + "; ";
+        note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
+    } else if (eps.mode == EpsRule::Mode::kSpacing) {
+        const double s = search::median_spacing(cloud);
+        if (!(s > 0)) {
+            throw InvalidArgument("dbscan: eps from the spacing needs at least two distinct points");
+        }
+        p.eps = eps.factor * s;
+        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
+               format_number(p.eps) + "; ";
     }
     const segmentation::DbscanResult r = segmentation::dbscan(cloud, p);
     std::size_t noise = 0;
@@ -111,7 +120,7 @@ ChainResult run_chain(const io::Blob& in, const ChainParams& p) {
     if (p.knn) {
         take(apply_knn_outlier(cur, *p.knn));
     }
-    take(apply_dbscan(cur, p.dbscan, p.eps_auto));
+    take(apply_dbscan(cur, p.dbscan, p.eps));
     if (p.split) {
         take(apply_recursive_split(cur, *p.split));
     }

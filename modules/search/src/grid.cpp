@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <pc/core/error.h>
+#include <pc/core/stats.h>
 
 namespace pc::search {
 
@@ -476,6 +477,24 @@ void Grid::all_knn(std::size_t k,
             f(order_[s], idx, d2);
         }
     });
+}
+
+double median_spacing(const Cloud& cloud, std::size_t samples) {
+    const Grid grid(cloud, Grid::suggest_cell(cloud));
+    if (grid.finite_count() < 2) {
+        return 0;
+    }
+    const std::size_t stride = std::max<std::size_t>(1, grid.finite_count() / std::max<std::size_t>(1, samples));
+    std::vector<double> d;
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    for (std::size_t s = 0; s < grid.finite_count(); s += stride) {
+        grid.knn(grid.index_of(static_cast<std::uint32_t>(s)), 1, idx, d2);
+        if (!d2.empty() && d2[0] > 0) {
+            d.push_back(std::sqrt(d2[0]));
+        }
+    }
+    return d.empty() ? 0 : median(d);
 }
 
 }  // namespace pc::search

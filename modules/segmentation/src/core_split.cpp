@@ -21,22 +21,6 @@ namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 
-/// The median distance from a point to its nearest other point, over at most ~20000 points
-/// taken at a fixed stride (deterministic).
-double median_spacing(const Cloud& pts, const search::Grid& grid) {
-    const std::size_t stride = std::max<std::size_t>(1, pts.size() / 20000);
-    std::vector<double> d;
-    std::vector<std::uint32_t> idx;
-    std::vector<double> d2;
-    for (std::size_t i = 0; i < pts.size(); i += stride) {
-        grid.knn(static_cast<std::uint32_t>(i), 1, idx, d2);
-        if (!d2.empty() && d2[0] > 0) {
-            d.push_back(std::sqrt(d2[0]));
-        }
-    }
-    return d.empty() ? 0 : median(d);
-}
-
 std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     while (parent[x] != x) {
         parent[x] = parent[parent[x]];
@@ -90,10 +74,7 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
     r.depth.assign(n, 0.0f);
     std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
     std::vector<std::uint32_t> parts(clusters, 1);
-    if (m >= 2) {
-        const search::Grid probe(pts, search::Grid::suggest_cell(pts));
-        r.spacing = median_spacing(pts, probe);
-    }
+    r.spacing = search::median_spacing(pts);
     if (r.spacing > 0) {
         const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
         const search::Grid grid(pts, std::max(rb, link));

@@ -15,6 +15,17 @@
 
 namespace pc::pipeline {
 
+/// How DBSCAN's eps is chosen: the fixed dbscan.eps, the knee of the k-distance curve
+/// (segmentation::estimate_eps), or `factor` × the point spacing (search::median_spacing).
+struct EpsRule {
+    enum class Mode { kFixed, kKnee, kSpacing } mode = Mode::kFixed;
+    double factor = 3.5;  ///< kSpacing: eps = factor × median nearest-neighbour distance
+};
+
+/// Reads the text of an `--eps` option: a number (fixed), "auto" (knee) or "spacing" (factor ×
+/// spacing, the factor kept), or "Nxs" (N × spacing). Throws pc::InvalidArgument.
+void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule);
+
 /// Every parameter of the counting chain (../shared/METHOD.md), step by step.
 /// A step whose optional is empty is skipped.
 struct ChainParams {
@@ -23,7 +34,7 @@ struct ChainParams {
     std::optional<filters::VoxelParams> voxel;
     std::optional<filters::KnnOutlierParams> knn;
     segmentation::DbscanParams dbscan;
-    bool eps_auto = false;  ///< estimate dbscan.eps from the cloud (estimate_eps)
+    EpsRule eps;            ///< how dbscan.eps is chosen (fixed by default)
     std::optional<segmentation::RecursiveSplitParams> split;
     std::uint32_t count_min_points = 1;  ///< clusters with fewer points are not counted
 };

@@ -30,10 +30,10 @@ struct KnnOutput {
                                      const filters::KnnOutlierParams& p,
                                      const KnnOutput& out = {});
 
-/// Writes `label` (U 4). With eps_auto, eps is estimated first and reported in the note.
+/// Writes `label` (U 4). Unless the rule is fixed, eps is estimated first and reported in the note.
 [[nodiscard]] Step apply_dbscan(const io::Blob& in,
                                 segmentation::DbscanParams p,
-                                bool eps_auto = false);
+                                const EpsRule& eps = {});
 /// Reads and rewrites `label`.
 [[nodiscard]] Step apply_recursive_split(const io::Blob& in,
                                          const segmentation::RecursiveSplitParams& p);

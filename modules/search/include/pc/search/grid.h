@@ -12,6 +12,11 @@ namespace pc::search {
 /// A uniform grid over the finite points of a cloud, for exact radius and k-nearest-neighbour
 /// queries. Points are stored sorted by cell, so a cell's points are contiguous in memory.
 /// Distances are computed in double from the float coordinates: d² = Σ (a_i − b_i)².
+/// The median distance from a point to its nearest other point (the point spacing), over at most
+/// `samples` finite points taken at a fixed stride (deterministic); 0 with fewer than 2 points or
+/// when the sampled points all coincide with another.
+[[nodiscard]] double median_spacing(const Cloud& cloud, std::size_t samples = 20000);
+
 class Grid {
 public:
     Grid(const Grid&) = delete;
