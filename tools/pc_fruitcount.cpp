@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
     tool.option("rule", "paper", [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
                 "split: paper, script or cores");
     tool.option("core-fraction", &split.core_fraction, "split (cores): core depth / estimated fruit radius");
+    tool.option("min-relative-size", &split.min_relative_size, "cores rule: clusters below this x the median cluster size become noise");
     tool.option("size-factor", &split.size_factor, "split: points > this x median size");
     tool.option("volume-factor", &split.volume_factor, "split: AABB volume > this x median volume");
     tool.option("median-min-points", &split.median_min_points, "split (script): size median over clusters with more points");

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
                 "than --median-min-points, volume median over clusters within --size-band of it; "
                 "cores: cut each cluster at the necks between its solid cores (no medians, no k-means)");
     tool.option("core-fraction", &p.core_fraction, "cores rule: core depth as a fraction of the estimated fruit radius");
+    tool.option("min-relative-size", &p.min_relative_size, "cores rule: clusters below this x the median cluster size become noise");
     tool.option("size-factor", &p.size_factor, "split needs points > this x median size");
     tool.option("volume-factor", &p.volume_factor, "and AABB volume > this x median volume");
     tool.option("median-min-points", &p.median_min_points,

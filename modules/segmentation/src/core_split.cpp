@@ -29,14 +29,126 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
+std::vector<double> deepest_of(const std::vector<float>& depth, const std::vector<std::uint32_t>& lab,
+                               std::uint32_t clusters) {
+    std::vector<double> deepest(clusters, 0.0);
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
+    }
+    return deepest;
+}
+
+/// Hollow clusters (no interior point) cut into spheres; see core_split().
+void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& lab, const std::vector<double>& deepest,
+                           const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
+                           std::vector<std::uint32_t>& parts) {
+    const auto clusters = static_cast<std::uint32_t>(deepest.size());
+    std::vector<std::vector<std::uint32_t>> members(clusters);
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+        if (deepest[lab[k]] == 0) {
+            members[lab[k]].push_back(static_cast<std::uint32_t>(k));
+        }
+    }
+    std::vector<Sphere> fits(clusters);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
+        fits[c] = fit_sphere(pts, members[c]);
+    }
+    std::vector<double> radii, sizes;
+    for (std::uint32_t c = 0; c < clusters; ++c) {
+        const Sphere& f = fits[c];
+        if (f.ok && f.rms < 0.15 * f.radius && f.radius > 2 * r.spacing) {
+            radii.push_back(f.radius);
+            sizes.push_back(static_cast<double>(members[c].size()));
+        }
+    }
+    if (radii.size() < 3) {
+        return;
+    }
+    r.hollow_radius = median(radii);
+    const double typical = median(sizes);
+    std::vector<std::vector<std::uint32_t>> cut(clusters);
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
+        const Sphere& f = fits[c];
+        const bool single = f.ok && f.rms < 0.15 * f.radius && f.radius <= params.spheres.radius_high * r.hollow_radius;
+        if (!members[c].empty() && !single) {
+            cut[c] = split_hollow(pts, members[c], r.hollow_radius, r.spacing, typical, params.spheres);
+        }
+    }
+    for (std::uint32_t c = 0; c < clusters; ++c) {
+        if (cut[c].empty()) {
+            continue;
+        }
+        const std::uint32_t count = *std::max_element(cut[c].begin(), cut[c].end()) + 1;
+        if (count >= 2) {
+            for (std::size_t q = 0; q < members[c].size(); ++q) {
+                part[members[c][q]] = cut[c][q];
+            }
+            parts[c] = count;
+            ++r.hollow_splits;
+            ++r.splits;
+        }
+    }
+}
+
+/// Parts whose points lie on one sphere of about the fruit radius are pieces of one fruit that
+/// occlusion cut apart: parts whose fitted spheres (RMS < 0.15 × radius, radius within
+/// 0.75..1.33 R) have centres closer than R / 2 are joined. `labels` are 1..count (0 = noise).
+void merge_hollow_fragments(const Cloud& pts, std::vector<std::uint32_t>& labels, std::uint32_t count,
+                            double fruit_radius, std::uint32_t& merged) {
+    std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
+    for (std::size_t k = 0; k < labels.size(); ++k) {
+        members[labels[k]].push_back(static_cast<std::uint32_t>(k));
+    }
+    std::vector<Sphere> fits(members.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t l = 1; l < static_cast<std::int64_t>(members.size()); ++l) {
+        const Sphere f = fit_sphere(pts, members[l]);
+        if (f.ok && f.rms < 0.15 * f.radius && f.radius >= 0.75 * fruit_radius && f.radius <= 1.33 * fruit_radius) {
+            fits[l] = f;
+        }
+    }
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t l = 1; l < members.size(); ++l) {
+        if (fits[l].ok) {
+            order.push_back(l);
+        }
+    }
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].centre[0] < fits[b].centre[0]; });
+    std::vector<std::uint32_t> parent(members.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    const double reach = 0.5 * fruit_radius;
+    for (std::size_t a = 0; a < order.size(); ++a) {
+        for (std::size_t b = a + 1; b < order.size(); ++b) {
+            const auto& x = fits[order[a]].centre;
+            const auto& y = fits[order[b]].centre;
+            if (y[0] - x[0] > reach) {
+                break;
+            }
+            const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+            if (d2 < reach * reach) {
+                const auto ra = find(parent, order[a]), rb = find(parent, order[b]);
+                if (ra != rb) {
+                    parent[std::max(ra, rb)] = std::min(ra, rb);
+                    ++merged;
+                }
+            }
+        }
+    }
+    for (auto& l : labels) {
+        l = l == 0 ? 0 : find(parent, l);
+    }
+}
+
 }  // namespace
 
 void CoreSplitParams::validate() const {
     const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
     if (!in(core_fraction, 0.01, 0.99) || !in(boundary_radius, 1, 20) || !in(boundary_offset, 0.01, 0.99) ||
-        !in(link, 1, 10) || !in(min_core_fraction, 0, 1)) {
+        !in(link, 1, 10) || !in(min_core_fraction, 0, 1) || !in(min_relative_size, 0, 1)) {
         throw InvalidArgument("core_split: core_fraction must be in [0.01, 0.99], boundary_radius in [1, 20], "
-                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction in [0, 1]; got " +
+                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction and min_relative_size in [0, 1]; got " +
                               format_number(core_fraction) + ", " + format_number(boundary_radius) + ", " +
                               format_number(boundary_offset) + ", " + format_number(link) + ", " +
                               format_number(min_core_fraction));
@@ -219,6 +331,9 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
             parts[c] = std::max(1u, cores[c]);
             r.splits += cores[c] >= 2;
         }
+        if (params.hollow) {
+            split_hollow_clusters(pts, lab, deepest_of(depth, lab, clusters), params, r, part, parts);
+        }
     }
     // Labels: cluster c's parts get consecutive numbers, then renumbered by size.
     std::vector<std::uint32_t> first(clusters + 1, 0);
@@ -226,10 +341,33 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
         first[c + 1] = first[c] + parts[c];
     }
     std::vector<std::uint32_t> out(n, 0);
+    std::vector<std::uint32_t> local(m);  // the same numbering on the compacted points
     for (std::size_t k = 0; k < m; ++k) {
-        out[index[k]] = first[lab[k]] + std::min(part[k], parts[lab[k]] - 1) + 1;
+        local[k] = first[lab[k]] + std::min(part[k], parts[lab[k]] - 1) + 1;
     }
-    r.cluster_count = renumber_by_size(out, params.min_cluster_size);
+    if (r.hollow_radius > 0) {
+        merge_hollow_fragments(pts, local, first[clusters], r.hollow_radius, r.merged_fragments);
+    }
+    for (std::size_t k = 0; k < m; ++k) {
+        out[index[k]] = local[k];
+    }
+    std::uint32_t min_size = params.min_cluster_size;
+    if (params.min_relative_size > 0) {
+        std::vector<double> sizes(first[clusters] + 1, 0.0);
+        for (auto l : out) {
+            sizes[l] += 1;
+        }
+        std::vector<double> present;
+        for (std::size_t l = 1; l < sizes.size(); ++l) {
+            if (sizes[l] > 0) {
+                present.push_back(sizes[l]);
+            }
+        }
+        if (!present.empty()) {
+            min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
+        }
+    }
+    r.cluster_count = renumber_by_size(out, min_size);
     r.labels = std::move(out);
     return r;
 }

@@ -96,7 +96,8 @@ RecursiveSplitResult recursive_split(const Cloud& cloud,
     params.validate();
     if (params.rule == SplitRule::kCores) {
         CoreSplitResult c = core_split(cloud, labels, {.core_fraction = params.core_fraction,
-                                                       .min_cluster_size = params.min_cluster_size});
+                                                       .min_cluster_size = params.min_cluster_size,
+                                                       .min_relative_size = params.min_relative_size});
         RecursiveSplitResult r;
         r.labels = std::move(c.labels);
         r.cluster_count = c.cluster_count;

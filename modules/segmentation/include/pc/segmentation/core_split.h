@@ -5,6 +5,7 @@
 #include <vector>
 
 #include <pc/core/cloud.h>
+#include <pc/segmentation/sphere_split.h>
 
 namespace pc::segmentation {
 
@@ -19,6 +20,9 @@ struct CoreSplitParams {
     double link = 1.75;              ///< × s: points closer than this are adjacent (lattice diagonals: √3)
     double min_core_fraction = 0.1;  ///< cores with fewer points than this × an ideal core are ignored
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
+    double min_relative_size = 0;    ///< ... and those with fewer than this × the median final size
+    bool hollow = true;              ///< split hollow clusters (no interior at all) into spheres
+    HollowSplitParams spheres;       ///< how (split_hollow)
 
     void validate() const;
 };
@@ -29,6 +33,9 @@ struct CoreSplitResult {
     std::uint32_t splits = 0;     ///< clusters cut into two or more parts
     double spacing = 0;           ///< s
     double fruit_radius = 0;      ///< R: the median over clusters of their greatest depth
+    double hollow_radius = 0;     ///< hollow clusters: median radius of the single-fruit-like ones
+    std::uint32_t hollow_splits = 0;  ///< hollow clusters cut into spheres
+    std::uint32_t merged_fragments = 0;  ///< hollow parts joined to another on the same sphere
     std::vector<float> depth;     ///< per point: distance to the nearest boundary point (0 for noise)
 };
 
@@ -39,7 +46,11 @@ struct CoreSplitResult {
 /// touching fruit is no deeper than one fruit). Points deeper than core_fraction × R form cores
 /// (connected through `link`); a cluster with two or more cores is flooded from them in order of
 /// decreasing depth (marker watershed), and every point takes the part that reaches it first.
-/// Hollow clouds (surfaces only) have no depth and are left as they are. Label 0 stays noise;
+/// Hollow clusters (no interior point: NeRF-like surfaces) have no cores; with `hollow` they are
+/// cut into spheres instead (split_hollow), with the fruit radius taken as the median radius of the
+/// hollow clusters that look like one fruit (sphere fit RMS < 0.15 × its radius); without three
+/// such clusters they stay whole. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
+/// centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0 stays noise;
 /// non-finite points become noise. Deterministic.
 [[nodiscard]] CoreSplitResult core_split(const Cloud& cloud,
                                          std::span<const std::uint32_t> labels,

@@ -34,6 +34,7 @@ struct RecursiveSplitParams {
     std::uint32_t restarts = 6;  ///< k-means++ restarts per split (k = 2)
     std::uint64_t seed = 0;      ///< k-means seed; each cluster's engine also mixes its first index
     double core_fraction = 0.5;  ///< cores rule: core depth as a fraction of the fruit radius
+    double min_relative_size = 0;  ///< cores rule: clusters below this × the median size become noise
 
     void validate() const;
 };
