@@ -9,7 +9,7 @@ namespace seg = pc::segmentation;
 
 int main(int argc, char** argv) {
     // Each step's Params live here, bound to options; the preset fills them first.
-    pl::ChainParams chain = pl::preset("paper-dense");
+    pl::ChainParams chain = pl::preset("dense");
     pc::filters::ColorFilterParams color = *chain.color;
     pc::filters::CropParams crop;
     pc::filters::VoxelParams voxel;
@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
 
     pc::cli::Tool tool("pc_fruitcount",
                        "count fruit: colour filter, crop, voxel, kNN outlier, DBSCAN, recursive "
-                       "split and count in one process (default preset: paper-dense)",
+                       "split and count in one process (default preset: dense)",
                        pc::cli::Output::kText);
     tool.presets(pl::preset_names(), [&](const std::string& name) {
         chain = pl::preset(name);
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
     tool.option("drop-percentile", &knn.drop_percentile, "kNN outlier: drop mean distance >= P(100-P)");
     tool.option("std-mul", &knn.std_mul, "kNN outlier: instead drop mean distance > mean + M sigma");
     tool.flag("no-knn", &no_knn, "skip the kNN outlier filter");
-    tool.option("eps", pc::format_number(chain.dbscan.eps),
+    tool.option("eps", pl::eps_text(chain.dbscan, chain.eps),
                 [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
                 "DBSCAN: neighbour iff distance <= eps; 'auto' (knee), 'spacing' or 'Nxs' (N x point spacing)");
     tool.option("min-points", &chain.dbscan.min_points, "DBSCAN: core needs this many, itself included");

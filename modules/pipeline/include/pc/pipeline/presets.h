@@ -25,6 +25,8 @@ struct EpsRule {
 /// Reads the text of an `--eps` option: a number (fixed), "auto" (knee) or "spacing" (factor ×
 /// spacing, the factor kept), or "Nxs" (N × spacing). Throws pc::InvalidArgument.
 void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule);
+/// The `--eps` text that parse_eps() reads back to the same choice ("0.015", "auto", "4xs").
+[[nodiscard]] std::string eps_text(const segmentation::DbscanParams& dbscan, const EpsRule& rule);
 
 /// Every parameter of the counting chain (../shared/METHOD.md), step by step.
 /// A step whose optional is empty is skipped.
@@ -43,6 +45,8 @@ struct ChainParams {
 [[nodiscard]] const std::vector<std::string>& preset_names();
 
 /// The named parameter set; throws pc::InvalidArgument for an unknown name.
+///  - dense: beyond the paper, for unknown clouds: eps = 4 x the point spacing, the cores split
+///    rule (no medians), clusters below 0.1 x the median size dropped; pc_fruitcount's default
 ///  - paper-dense: the paper's dense setting (sections 2.3-2.5): eps 0.015, paper split rule
 ///  - paper-sparse: the paper's degraded-mask setting: eps 0.030, split only above 5x median volume
 ///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,
