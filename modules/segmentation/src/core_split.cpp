@@ -10,6 +10,8 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <Eigen/Core>
+
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
 #include <pc/search/grid.h>
@@ -141,6 +143,72 @@ void merge_hollow_fragments(const Cloud& pts, std::vector<std::uint32_t>& labels
     }
 }
 
+/// Solid pieces of one fruit that poor masks cut apart: two parts (with some depth) are joined
+/// while every point of their union lies within `extent` of the union's centroid (they fit in
+/// one fruit), nearest centroids first. Whole touching fruit never fit: their union spans 2 R.
+void merge_solid_fragments(const Cloud& pts, const std::vector<float>& depth, std::vector<std::uint32_t>& labels,
+                           std::uint32_t count, double extent, std::uint32_t& merged) {
+    std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
+    std::vector<std::uint8_t> solid(std::size_t{count} + 1, 0);
+    for (std::size_t k = 0; k < labels.size(); ++k) {
+        members[labels[k]].push_back(static_cast<std::uint32_t>(k));
+        solid[labels[k]] |= depth[k] > 0;
+    }
+    std::vector<Eigen::Vector3d> sum(members.size(), Eigen::Vector3d::Zero());
+    std::vector<std::uint32_t> order;
+    for (std::uint32_t l = 1; l < members.size(); ++l) {
+        for (auto k : members[l]) {
+            sum[l] += Eigen::Vector3d(pts[k].x, pts[k].y, pts[k].z);
+        }
+        if (solid[l] && !members[l].empty()) {
+            order.push_back(l);
+        }
+    }
+    const auto centroid = [&](std::uint32_t l) { return Eigen::Vector3d(sum[l] / static_cast<double>(members[l].size())); };
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return centroid(a).x() < centroid(b).x(); });
+    std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> pairs;
+    for (std::size_t a = 0; a < order.size(); ++a) {
+        const Eigen::Vector3d ca = centroid(order[a]);
+        for (std::size_t b = a + 1; b < order.size(); ++b) {
+            const Eigen::Vector3d cb = centroid(order[b]);
+            if (cb.x() - ca.x() > 2 * extent) {
+                break;
+            }
+            const double d = (ca - cb).norm();
+            if (d < 2 * extent) {
+                pairs.emplace_back(d, std::min(order[a], order[b]), std::max(order[a], order[b]));
+            }
+        }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<std::uint32_t> parent(members.size());
+    std::iota(parent.begin(), parent.end(), 0u);
+    for (const auto& [d, a0, b0] : pairs) {
+        const auto a = find(parent, a0), b = find(parent, b0);
+        if (a == b) {
+            continue;
+        }
+        const Eigen::Vector3d c = (sum[a] + sum[b]) / static_cast<double>(members[a].size() + members[b].size());
+        bool fits = true;
+        for (const auto* set : {&members[a], &members[b]}) {
+            for (auto k : *set) {
+                fits = fits && (Eigen::Vector3d(pts[k].x, pts[k].y, pts[k].z) - c).squaredNorm() <= extent * extent;
+            }
+        }
+        if (fits) {
+            const auto keep = std::min(a, b), gone = std::max(a, b);
+            parent[gone] = keep;
+            sum[keep] += sum[gone];
+            members[keep].insert(members[keep].end(), members[gone].begin(), members[gone].end());
+            members[gone].clear();
+            ++merged;
+        }
+    }
+    for (auto& l : labels) {
+        l = l == 0 ? 0 : find(parent, l);
+    }
+}
+
 }  // namespace
 
 void CoreSplitParams::validate() const {
@@ -246,6 +314,11 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
             deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
             r.depth[index[k]] = depth[k];
         }
+        {
+            std::vector<double> copy = deepest;
+            // The best-kept fruit: what a whole fruit measures when many are fragments.
+            r.largest_depth = percentile(copy, 90);
+        }
         r.fruit_radius = median(deepest);
         const double core_depth = params.core_fraction * r.fruit_radius;
         // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
@@ -347,6 +420,14 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
     }
     if (r.hollow_radius > 0) {
         merge_hollow_fragments(pts, local, first[clusters], r.hollow_radius, r.merged_fragments);
+    }
+    if (r.largest_depth > 0 && params.merge_fragments) {
+        std::vector<float> depth(m);
+        for (std::size_t k = 0; k < m; ++k) {
+            depth[k] = r.depth[index[k]];
+        }
+        merge_solid_fragments(pts, depth, local, first[clusters], params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
+                              r.merged_fragments);
     }
     for (std::size_t k = 0; k < m; ++k) {
         out[index[k]] = local[k];

@@ -21,6 +21,8 @@ struct CoreSplitParams {
     double min_core_fraction = 0.1;  ///< cores with fewer points than this × an ideal core are ignored
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     double min_relative_size = 0;    ///< ... and those with fewer than this × the median final size
+    bool merge_fragments = true;     ///< join solid parts whose union fits in one fruit
+    double fragment_extent = 1.5;    ///< ... within this × the fruit's radius of the union's centroid
     bool hollow = true;              ///< split hollow clusters (no interior at all) into spheres
     HollowSplitParams spheres;       ///< how (split_hollow)
 
@@ -33,6 +35,7 @@ struct CoreSplitResult {
     std::uint32_t splits = 0;     ///< clusters cut into two or more parts
     double spacing = 0;           ///< s
     double fruit_radius = 0;      ///< R: the median over clusters of their greatest depth
+    double largest_depth = 0;     ///< the 90th percentile of the same (the best-kept fruit)
     double hollow_radius = 0;     ///< hollow clusters: median radius of the single-fruit-like ones
     std::uint32_t hollow_splits = 0;  ///< hollow clusters cut into spheres
     std::uint32_t merged_fragments = 0;  ///< hollow parts joined to another on the same sphere
