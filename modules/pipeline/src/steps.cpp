@@ -1,6 +1,7 @@
 #include <pc/pipeline/steps.h>
 
 #include <cmath>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -69,10 +70,8 @@ Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRul
         note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
     } else if (eps.mode == EpsRule::Mode::kSpacing) {
         const double s = search::median_spacing(cloud);
-        if (!(s > 0)) {
-            throw InvalidArgument("dbscan: eps from the spacing needs at least two distinct points");
-        }
-        p.eps = eps.factor * s;
+        // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
+        p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
         note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
                format_number(p.eps) + "; ";
     }

@@ -31,23 +31,14 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
-std::vector<double> deepest_of(const std::vector<float>& depth, const std::vector<std::uint32_t>& lab,
-                               std::uint32_t clusters) {
-    std::vector<double> deepest(clusters, 0.0);
-    for (std::size_t k = 0; k < depth.size(); ++k) {
-        deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
-    }
-    return deepest;
-}
-
-/// Hollow clusters (no interior point) cut into spheres; see core_split().
-void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& lab, const std::vector<double>& deepest,
+/// Hollow clusters cut into spheres; see core_split().
+void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& lab, const std::vector<std::uint8_t>& hollow,
                            const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
                            std::vector<std::uint32_t>& parts) {
-    const auto clusters = static_cast<std::uint32_t>(deepest.size());
+    const auto clusters = static_cast<std::uint32_t>(hollow.size());
     std::vector<std::vector<std::uint32_t>> members(clusters);
     for (std::size_t k = 0; k < pts.size(); ++k) {
-        if (deepest[lab[k]] == 0) {
+        if (hollow[lab[k]]) {
             members[lab[k]].push_back(static_cast<std::uint32_t>(k));
         }
     }
@@ -254,6 +245,7 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
     r.depth.assign(n, 0.0f);
     std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
     std::vector<std::uint32_t> parts(clusters, 1);
+    std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
     r.spacing = search::median_spacing(pts);
     if (r.spacing > 0) {
         const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
@@ -308,23 +300,34 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
                 }
             }
         }
-        // 3. The fruit radius: the median over clusters of their greatest depth.
-        std::vector<double> deepest(clusters, 0.0);
+        // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
+        //    inside) and the fruit radius: the median over solid clusters of their greatest depth.
+        std::vector<double> deepest(clusters, 0.0), inside(clusters, 0.0), size(clusters, 0.0);
         for (std::size_t k = 0; k < m; ++k) {
             deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
+            inside[lab[k]] += depth[k] > 0;
+            size[lab[k]] += 1;
             r.depth[index[k]] = depth[k];
         }
-        {
-            std::vector<double> copy = deepest;
+        hollow.assign(clusters, 0);
+        std::vector<double> solid_depths;
+        for (std::uint32_t c = 0; c < clusters; ++c) {
+            hollow[c] = inside[c] < 0.05 * size[c];
+            if (!hollow[c]) {
+                solid_depths.push_back(deepest[c]);
+            }
+        }
+        if (!solid_depths.empty()) {
+            std::vector<double> copy = solid_depths;
             // The best-kept fruit: what a whole fruit measures when many are fragments.
             r.largest_depth = percentile(copy, 90);
+            r.fruit_radius = median(solid_depths);
         }
-        r.fruit_radius = median(deepest);
         const double core_depth = params.core_fraction * r.fruit_radius;
         // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
         std::vector<std::uint32_t> parent(m);
         std::iota(parent.begin(), parent.end(), 0u);
-        const auto is_core = [&](std::size_t k) { return core_depth > 0 && depth[k] >= core_depth; };
+        const auto is_core = [&](std::size_t k) { return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth; };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
                 grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
@@ -405,7 +408,7 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
             r.splits += cores[c] >= 2;
         }
         if (params.hollow) {
-            split_hollow_clusters(pts, lab, deepest_of(depth, lab, clusters), params, r, part, parts);
+            split_hollow_clusters(pts, lab, hollow, params, r, part, parts);
         }
     }
     // Labels: cluster c's parts get consecutive numbers, then renumbered by size.

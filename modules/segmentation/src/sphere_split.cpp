@@ -30,8 +30,8 @@ Sphere solve(const Eigen::Matrix4d& ata, const Eigen::Vector4d& atb) {
     if (!lu.isInvertible()) {
         return s;
     }
-    const Eigen::Vector4d x = lu.solve(atb);  // 2c (3), d
-    const Eigen::Vector3d c = x.head<3>() / 2;
+    const Eigen::Vector4d x = lu.solve(atb);  // c (3), d = r² − ‖c‖²
+    const Eigen::Vector3d c = x.head<3>();
     const double r2 = x[3] + c.squaredNorm();
     if (!(r2 > 0) || !std::isfinite(r2)) {
         return s;
@@ -92,7 +92,7 @@ std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
     const double band = std::max(p.band * fruit_radius, 1.5 * spacing);
     const auto need = static_cast<std::size_t>(std::max(8.0, p.min_inliers * typical_points));
     const double lo = p.radius_low * fruit_radius, hi = p.radius_high * fruit_radius;
-    const double reach2 = (1.6 * fruit_radius) * (1.6 * fruit_radius);
+    const double reach2 = (1.2 * fruit_radius) * (1.2 * fruit_radius);  // samples from one fruit, mostly
     if (members.size() < 2 * need) {
         return part;
     }
@@ -106,8 +106,14 @@ std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
         left[k] = k;
     }
     std::vector<Sphere> spheres;
-    std::vector<std::size_t> near, inliers;
+    std::vector<std::size_t> near, inliers, probe;
     while (left.size() >= need) {
+        // Candidates are scored on at most 1000 of the remaining points (a fixed stride).
+        probe.clear();
+        const std::size_t stride = std::max<std::size_t>(1, left.size() / 1000);
+        for (std::size_t q = 0; q < left.size(); q += stride) {
+            probe.push_back(left[q]);
+        }
         Sphere best;
         std::size_t best_score = 0;
         for (std::uint32_t it = 0; it < p.iterations; ++it) {
@@ -137,7 +143,7 @@ std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
                 s.centre[a] += seed[a];
             }
             std::size_t score = 0;
-            for (auto k : near) {
+            for (auto k : probe) {
                 score += surface_distance(s, pos[k]) <= band;
             }
             if (score > best_score) {
@@ -145,7 +151,7 @@ std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
                 best = s;
             }
         }
-        if (best_score < need) {
+        if (best_score * stride < need) {
             break;
         }
         // Refit on the inliers; keep the refit only if it stays a fruit-sized sphere.

@@ -1,0 +1,190 @@
+// core_split: touching solid balls cut at their necks, hollow shells cut into spheres, fragments
+// joined; the same partition after scaling and rotating.
+#include <cmath>
+#include <map>
+#include <set>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/segmentation/core_split.h>
+
+#include "support/clouds.h"
+
+namespace pc::segmentation {
+namespace {
+
+/// Lattice points (spacing 1) inside a ball: what an explicit voxel reconstruction exports.
+void add_solid(Cloud& c, std::vector<std::uint32_t>& truth, std::vector<std::uint32_t>& label,
+               const Eigen::Vector3d& centre, double r, std::uint32_t id, std::uint32_t cluster) {
+    for (int i = -8; i <= 8; ++i) {
+        for (int j = -8; j <= 8; ++j) {
+            for (int k = -8; k <= 8; ++k) {
+                const Eigen::Vector3d p(std::floor(centre.x()) + i + 0.5, std::floor(centre.y()) + j + 0.5,
+                                        std::floor(centre.z()) + k + 0.5);
+                if ((p - centre).norm() <= r) {
+                    c.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+                    truth.push_back(id);
+                    label.push_back(cluster);
+                }
+            }
+        }
+    }
+}
+
+/// True when `got` and `want` put points together in exactly the same way (labels may differ).
+bool same_partition(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& want) {
+    std::map<std::uint32_t, std::uint32_t> fwd, back;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        if (fwd.emplace(got[k], want[k]).first->second != want[k] ||
+            back.emplace(want[k], got[k]).first->second != got[k]) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/// Points whose label is not the majority label of their true object, or -1 when two objects
+/// share a majority label (a merge).
+long misassigned(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& truth) {
+    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ++votes[truth[k]][got[k]];
+    }
+    long wrong = 0;
+    std::set<std::uint32_t> used;
+    for (const auto& [id, v] : votes) {
+        long best = 0, all = 0;
+        std::uint32_t label = 0;
+        for (const auto& [l, n] : v) {
+            if (n > best) {
+                best = n;
+                label = l;
+            }
+            all += n;
+        }
+        if (!used.insert(label).second) {
+            return -1;
+        }
+        wrong += all - best;
+    }
+    return wrong;
+}
+
+struct Scene {
+    Cloud cloud;
+    std::vector<std::uint32_t> truth, label;
+};
+
+/// Three lone balls and a bunch of four touching balls (radius 4.5 voxels; DBSCAN would give one
+/// cluster for the bunch).
+Scene bunch() {
+    Scene s;
+    const double r = 4.5;
+    add_solid(s.cloud, s.truth, s.label, {0, 0, 0}, r, 1, 1);
+    add_solid(s.cloud, s.truth, s.label, {30, 0, 0}, r, 2, 2);
+    add_solid(s.cloud, s.truth, s.label, {0, 30, 0}, r, 3, 3);
+    const std::array<Eigen::Vector3d, 4> at = {Eigen::Vector3d{30, 30, 0}, {39.1, 30, 0}, {34.6, 37.9, 0}, {34.6, 33, 7.6}};
+    for (std::uint32_t f = 0; f < 4; ++f) {
+        add_solid(s.cloud, s.truth, s.label, at[f], r, 4 + f, 4);
+    }
+    return s;
+}
+
+TEST(CoreSplit, TouchingSolidBallsAreCutAtTheirNecks) {
+    const Scene s = bunch();
+    const CoreSplitResult r = core_split(s.cloud, s.label, {});
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_EQ(r.splits, 1u);
+    EXPECT_NEAR(r.spacing, 1.0, 1e-6);
+    const long wrong = misassigned(r.labels, s.truth);
+    EXPECT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));  // a few points at the necks
+}
+
+TEST(CoreSplit, SamePartitionWhenScaledOrRotated) {
+    const Scene s = bunch();
+    const CoreSplitResult base = core_split(s.cloud, s.label, {});
+    const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    for (const auto& [name, m] : std::vector<std::pair<std::string, Eigen::Matrix3d>>{
+             {"x0.25", 0.25 * Eigen::Matrix3d::Identity()}, {"x4", 4.0 * Eigen::Matrix3d::Identity()}, {"rotated", rot}}) {
+        Cloud t;
+        for (const auto& p : s.cloud) {
+            const Eigen::Vector3d q = m * Eigen::Vector3d(p.x, p.y, p.z);
+            t.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())});
+        }
+        const CoreSplitResult r = core_split(t, s.label, {});
+        EXPECT_EQ(r.cluster_count, base.cluster_count) << name;
+        const long wrong = misassigned(r.labels, s.truth);
+        EXPECT_GE(wrong, 0) << name;
+        EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100)) << name;
+    }
+}
+
+TEST(CoreSplit, HollowShellsAreCutIntoSpheres) {
+    // Surface points only (a NeRF-like export): three lone shells and a touching pair in one cluster.
+    Cloud c;
+    std::vector<std::uint32_t> truth, label;
+    const auto shell = [&](float x, float y, std::uint32_t id, std::uint32_t cluster, unsigned seed) {
+        for (const auto& p : test::sphere_shell(1.0f, 600, seed)) {
+            c.push_back({p.x + x, p.y + y, p.z});
+            truth.push_back(id);
+            label.push_back(cluster);
+        }
+    };
+    shell(0, 0, 1, 1, 1);
+    shell(10, 0, 2, 2, 2);
+    shell(0, 10, 3, 3, 3);
+    shell(10, 10, 4, 4, 4);
+    shell(12.05f, 10, 5, 4, 5);
+    const CoreSplitResult r = core_split(c, label, {});
+    EXPECT_EQ(r.cluster_count, 5u);
+    EXPECT_EQ(r.hollow_splits, 1u);
+    EXPECT_NEAR(r.hollow_radius, 1.0, 0.05);
+    const long wrong = misassigned(r.labels, truth);  // points near the contact may go either way
+    EXPECT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(c.size() / 50));
+}
+
+TEST(CoreSplit, FragmentsOfOneFruitAreJoined) {
+    // Two caps cut from one ball (labelled apart, as DBSCAN leaves them) next to whole balls.
+    Scene s;
+    add_solid(s.cloud, s.truth, s.label, {0, 0, 0}, 4.5, 1, 1);
+    add_solid(s.cloud, s.truth, s.label, {30, 0, 0}, 4.5, 2, 2);
+    add_solid(s.cloud, s.truth, s.label, {0, 30, 0}, 4.5, 3, 3);
+    Scene whole;
+    add_solid(whole.cloud, whole.truth, whole.label, {30, 30, 0}, 4.5, 4, 4);
+    for (std::size_t k = 0; k < whole.cloud.size(); ++k) {
+        const float x = whole.cloud[k].x - 30;
+        if (std::abs(x) > 1.2f) {  // drop a slab through the middle: two caps 3 voxels apart
+            s.cloud.push_back(whole.cloud[k]);
+            s.truth.push_back(4);
+            s.label.push_back(x < 0 ? 4 : 5);
+        }
+    }
+    const CoreSplitResult r = core_split(s.cloud, s.label, {});
+    EXPECT_EQ(r.merged_fragments, 1u);
+    EXPECT_EQ(r.cluster_count, 4u);
+    EXPECT_TRUE(same_partition(r.labels, s.truth));
+    CoreSplitParams off;
+    off.merge_fragments = false;
+    EXPECT_EQ(core_split(s.cloud, s.label, off).cluster_count, 5u);
+}
+
+TEST(CoreSplit, NoiseStaysNoiseAndBadParametersAreRefused) {
+    Scene s = bunch();
+    s.cloud.push_back({100, 100, 100});
+    s.label.push_back(0);
+    s.truth.push_back(0);
+    const CoreSplitResult r = core_split(s.cloud, s.label, {});
+    EXPECT_EQ(r.labels.back(), 0u);
+    CoreSplitParams bad;
+    bad.core_fraction = 1.5;
+    EXPECT_THROW((void)core_split(s.cloud, s.label, bad), InvalidArgument);
+    EXPECT_THROW((void)core_split(s.cloud, std::vector<std::uint32_t>(3, 1), {}), InvalidArgument);
+    EXPECT_EQ(core_split(Cloud{}, std::vector<std::uint32_t>{}, {}).cluster_count, 0u);
+}
+
+}  // namespace
+}  // namespace pc::segmentation
