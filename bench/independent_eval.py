@@ -3,19 +3,15 @@
 
 Usage: /usr/bin/python3 bench/independent_eval.py labelled.pcd truth.json
 Needs python3-numpy and python3-scipy (Debian). Binary PCD with label and gt_instance only."""
-import sys, struct, collections, json
+import json
+import sys
+
 import numpy as np
 from scipy.optimize import linear_sum_assignment
-def read_pcd(path):
-    f = open(path, 'rb'); hdr = {}
-    while True:
-        line = f.readline().decode().strip()
-        k, *v = line.split(); hdr[k] = v
-        if k == 'DATA': break
-    names = hdr['FIELDS']; sizes = list(map(int, hdr['SIZE'])); types = hdr['TYPE']
-    n = int(hdr['POINTS'][0])
-    dt = np.dtype([(nm, {('F',4):'<f4',('U',4):'<u4',('F',8):'<f8'}[(t,s)]) for nm,t,s in zip(names,types,sizes)])
-    return np.frombuffer(f.read(n*dt.itemsize), dtype=dt, count=n)
+
+sys.path.insert(0, __file__.rsplit("/", 1)[0])
+from pcdio import read_pcd  # noqa: E402
+
 a = read_pcd(sys.argv[1]); truth = json.load(open(sys.argv[2]))
 pred = a['label'].astype(np.int64); gt = a['gt_instance'].astype(np.int64)
 P = sorted(set(pred[pred>0])); G = sorted(set(gt[gt>0]))
