@@ -92,7 +92,8 @@ Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSpli
         segmentation::recursive_split(io::xyz(in), labels, p);
     const std::string how = p.rule == segmentation::SplitRule::kCores
                                 ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
-                                      ", estimated fruit radius " + format_number(r.fruit_radius) + ")"
+                                      ", estimated fruit radius " + format_number(r.fruit_radius) +
+                                      (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius) : "") + ")"
                                 : "splits (thresholds: points > " + format_number(r.size_threshold) +
                                       ", AABB volume > " + format_number(r.volume_threshold) + ")";
     return {io::with_field(in, "label", r.labels),

@@ -31,6 +31,52 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
+/// The fruit radius from the curvature of hollow surfaces: least-squares spheres through patches
+/// (same cluster, within 8 s) around up to 2000 evenly strided points; the median radius of the
+/// patches that are spherical (RMS < 0.1 × radius) and curved (radius < 40 s). Also returns the
+/// points of a typical fruit: half of its sphere at the patches' median areal density. {0, 0} when
+/// fewer than 20 patches qualify.
+std::pair<double, double> radius_from_patches(const Cloud& pts, const std::vector<std::uint32_t>& lab,
+                                              const std::vector<std::vector<std::uint32_t>>& members, double s) {
+    Cloud surface;
+    std::vector<std::uint32_t> owner;
+    for (std::size_t c = 0; c < members.size(); ++c) {
+        for (auto k : members[c]) {
+            surface.push_back(pts[k]);
+            owner.push_back(lab[k]);
+        }
+    }
+    const double reach = 8 * s;
+    if (surface.size() < 20 || !(reach > 0)) {
+        return {0, 0};
+    }
+    const search::Grid grid(surface, reach);
+    const std::size_t stride = std::max<std::size_t>(1, surface.size() / 2000);
+    std::vector<double> radii, density;
+    std::vector<std::uint32_t> patch;
+    for (std::size_t q = 0; q < surface.size(); q += stride) {
+        patch.clear();
+        grid.for_each_within(surface[q], reach, [&](std::uint32_t j, double) {
+            if (owner[j] == owner[q]) {
+                patch.push_back(j);
+            }
+        });
+        if (patch.size() < 20) {
+            continue;
+        }
+        const Sphere f = fit_sphere(surface, patch);
+        if (f.ok && f.rms < 0.1 * f.radius && f.radius < 40 * s) {
+            radii.push_back(f.radius);
+            density.push_back(static_cast<double>(patch.size()) / (3.141592653589793 * reach * reach));
+        }
+    }
+    if (radii.size() < 20) {
+        return {0, 0};
+    }
+    const double radius = median(radii);
+    return {radius, 0.5 * median(density) * 4 * 3.141592653589793 * radius * radius};
+}
+
 /// Hollow clusters cut into spheres; see core_split().
 void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& lab, const std::vector<std::uint8_t>& hollow,
                            const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
@@ -47,19 +93,13 @@ void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& l
     for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
         fits[c] = fit_sphere(pts, members[c]);
     }
-    std::vector<double> radii, sizes;
-    for (std::uint32_t c = 0; c < clusters; ++c) {
-        const Sphere& f = fits[c];
-        if (f.ok && f.rms < 0.15 * f.radius && f.radius > 2 * r.spacing) {
-            radii.push_back(f.radius);
-            sizes.push_back(static_cast<double>(members[c].size()));
-        }
-    }
-    if (radii.size() < 3) {
+    // The fruit radius from the curvature of the surfaces (not from clusters that look like one
+    // fruit: a compact bunch fits a larger sphere just as well).
+    double typical = 0;
+    std::tie(r.hollow_radius, typical) = radius_from_patches(pts, lab, members, r.spacing);
+    if (!(r.hollow_radius > 0)) {
         return;
     }
-    r.hollow_radius = median(radii);
-    const double typical = median(sizes);
     std::vector<std::vector<std::uint32_t>> cut(clusters);
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {

@@ -105,6 +105,7 @@ RecursiveSplitResult recursive_split(const Cloud& cloud,
         r.size_threshold = r.volume_threshold = std::nan("");
         r.spacing = c.spacing;
         r.fruit_radius = c.fruit_radius;
+        r.hollow_radius = c.hollow_radius;
         return r;
     }
     const std::size_t n = cloud.size();

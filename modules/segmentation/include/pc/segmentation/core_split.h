@@ -50,9 +50,10 @@ struct CoreSplitResult {
 /// (connected through `link`); a cluster with two or more cores is flooded from them in order of
 /// decreasing depth (marker watershed), and every point takes the part that reaches it first.
 /// Hollow clusters (no interior point: NeRF-like surfaces) have no cores; with `hollow` they are
-/// cut into spheres instead (split_hollow), with the fruit radius taken as the median radius of the
-/// hollow clusters that look like one fruit (sphere fit RMS < 0.15 × its radius); without three
-/// such clusters they stay whole. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
+/// cut into spheres instead (split_hollow), with the fruit radius read from the curvature of the
+/// surfaces (median radius of spherical patches within 8 s of evenly strided points; without 20
+/// such patches they stay whole); a cluster whose own sphere fit has RMS < 0.15 × its radius and a
+/// radius up to 1.33 × the fruit's is one fruit. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
 /// centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0 stays noise;
 /// non-finite points become noise. Deterministic.
 [[nodiscard]] CoreSplitResult core_split(const Cloud& cloud,

@@ -47,6 +47,7 @@ struct RecursiveSplitResult {
     double volume_threshold = 0;    ///< AABB volume above which a cluster may split
     double spacing = 0;             ///< cores rule: median nearest-neighbour distance
     double fruit_radius = 0;        ///< cores rule: estimated fruit radius
+    double hollow_radius = 0;       ///< cores rule: fruit radius estimated on hollow clusters
 };
 
 /// Recursive geometric splitting (paper 2.3.3): clusters violating both thresholds are split by
