@@ -8,7 +8,7 @@
 #include <unordered_set>
 
 #include <pc/core/error.h>
-#include <pc/scenes/random.h>
+#include <pc/core/random.h>
 
 namespace pc::scenes {
 

@@ -4,7 +4,7 @@
 #include <unordered_map>
 
 #include <pc/core/error.h>
-#include <pc/scenes/random.h>
+#include <pc/core/random.h>
 
 namespace pc::scenes {
 

@@ -6,21 +6,11 @@
 
 #include <Eigen/Dense>
 
+#include <pc/core/random.h>
+
 namespace pc::segmentation {
 
 namespace {
-
-/// splitmix64: a small deterministic generator.
-struct Mix {
-    std::uint64_t state;
-    std::uint64_t next() {
-        std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        return z ^ (z >> 31);
-    }
-    std::size_t below(std::size_t n) { return static_cast<std::size_t>(next() % n); }
-};
 
 Eigen::Vector3d at(const Cloud& cloud, std::uint32_t i) { return {cloud[i].x, cloud[i].y, cloud[i].z}; }
 
@@ -100,7 +90,7 @@ std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
     for (std::size_t k = 0; k < members.size(); ++k) {
         pos[k] = at(cloud, members[k]);
     }
-    Mix rng{p.seed ^ (0x9E3779B97F4A7C15ull * (members.front() + 1))};
+    Rng rng(p.seed ^ (0x9E3779B97F4A7C15ull * (members.front() + 1)));
     std::vector<std::size_t> left(members.size());
     for (std::size_t k = 0; k < left.size(); ++k) {
         left[k] = k;

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdint>
 
-namespace pc::scenes {
+namespace pc {
 
 /// A small seeded generator (splitmix64) whose sequence is the same on every platform and
-/// standard library, unlike std::uniform_real_distribution / std::normal_distribution.
+/// standard library, unlike std::uniform_real_distribution / std::normal_distribution. Used
+/// wherever random numbers reach an output (scenes, sphere RANSAC).
 class Rng {
 public:
     explicit Rng(std::uint64_t seed) : state_(seed) {}
@@ -44,4 +45,4 @@ private:
     std::uint64_t state_;
 };
 
-}  // namespace pc::scenes
+}  // namespace pc
