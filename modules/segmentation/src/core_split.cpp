@@ -8,9 +8,8 @@
 #include <string>
 #include <tuple>
 
-#include <Eigen/Eigenvalues>
-
 #include <Eigen/Core>
+#include <Eigen/Eigenvalues>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -245,12 +244,15 @@ void merge_solid_fragments(const Cloud& pts, const std::vector<float>& depth, st
 void CoreSplitParams::validate() const {
     const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
     if (!in(core_fraction, 0.01, 0.99) || !in(boundary_radius, 1, 20) || !in(boundary_offset, 0.01, 0.99) ||
-        !in(link, 1, 10) || !in(min_core_fraction, 0, 1) || !in(min_relative_size, 0, 1)) {
+        !in(link, 1, 10) || !in(min_core_fraction, 0, 1) || !in(min_relative_size, 0, 1) ||
+        !in(isotropy, 0, 1) || !in(fragment_extent, 0.1, 10)) {
         throw InvalidArgument("core_split: core_fraction must be in [0.01, 0.99], boundary_radius in [1, 20], "
-                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction and min_relative_size in [0, 1]; got " +
+                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction, min_relative_size "
+                              "and isotropy in [0, 1], fragment_extent in [0.1, 10]; got " +
                               format_number(core_fraction) + ", " + format_number(boundary_radius) + ", " +
                               format_number(boundary_offset) + ", " + format_number(link) + ", " +
-                              format_number(min_core_fraction));
+                              format_number(min_core_fraction) + ", " + format_number(min_relative_size) + ", " +
+                              format_number(isotropy) + ", " + format_number(fragment_extent));
     }
 }
 
@@ -286,6 +288,7 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
     std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
     std::vector<std::uint32_t> parts(clusters, 1);
     std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
+    std::vector<float> depth(m, 0.0f);  // per compacted point: distance to the nearest boundary point
     r.spacing = search::median_spacing(pts);
     if (r.spacing > 0) {
         const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
@@ -324,7 +327,6 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
                 edge.push_back(pts[k]);
             }
         }
-        std::vector<float> depth(m, 0.0f);
         if (!edge.empty()) {
             const search::Grid edges(edge, search::Grid::suggest_cell(edge));
 #pragma omp parallel
@@ -465,10 +467,6 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
         merge_hollow_fragments(pts, local, first[clusters], r.hollow_radius, r.merged_fragments);
     }
     if (r.largest_depth > 0 && params.merge_fragments) {
-        std::vector<float> depth(m);
-        for (std::size_t k = 0; k < m; ++k) {
-            depth[k] = r.depth[index[k]];
-        }
         merge_solid_fragments(pts, depth, local, first[clusters], params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
                               r.merged_fragments);
     }
