@@ -10,6 +10,8 @@
 #include <pc/core/error.h>
 #include <pc/core/random.h>
 
+#include "cell_key.h"
+
 namespace pc::scenes {
 
 namespace {
@@ -43,10 +45,6 @@ struct Voxel {
     bool surface;  ///< a 6-neighbour lies outside the object
 };
 
-std::uint64_t key(std::int32_t i, std::int32_t j, std::int32_t k) {
-    const auto u = [](std::int32_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
-    return u(i) | (u(j) << 21) | (u(k) << 42);
-}
 
 Vec3 centre_of(const Voxel& x, double v) {
     return {(x.i + 0.5) * v, (x.j + 0.5) * v, (x.k + 0.5) * v};
@@ -89,7 +87,7 @@ std::vector<Voxel> leaf_voxels(const Leaf& l, double v, const std::unordered_set
                 const Vec3 d = sub({(i + 0.5) * v, (j + 0.5) * v, (k + 0.5) * v}, l.centre);
                 const double h = dot(d, l.normal);
                 if (std::abs(h) <= half && dot(d, d) - h * h <= l.radius * l.radius &&
-                    !fruit.contains(key(i, j, k))) {
+                    !fruit.contains(cell_key(i, j, k))) {
                     out.push_back({i, j, k, true});
                 }
             }
@@ -337,7 +335,7 @@ Rendered render(const Scene& s, const RenderParams& p) {
     for (std::size_t f = 0; f < s.fruits.size(); ++f) {
         fruit[f] = fruit_voxels(s.fruits[f], v);
         for (const auto& x : fruit[f]) {
-            occupied.insert(key(x.i, x.j, x.k));
+            occupied.insert(cell_key(x.i, x.j, x.k));
         }
     }
     std::vector<std::vector<Voxel>> leaves(s.leaves.size());

@@ -6,6 +6,8 @@
 #include <pc/core/error.h>
 #include <pc/core/random.h>
 
+#include "cell_key.h"
+
 namespace pc::scenes {
 
 namespace {
@@ -32,7 +34,7 @@ public:
         for (std::int64_t dx = -1; dx <= 1; ++dx) {
             for (std::int64_t dy = -1; dy <= 1; ++dy) {
                 for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                    const auto it = cells_.find(pack(ix + dx, iy + dy, iz + dz));
+                    const auto it = cells_.find(cell_key(ix + dx, iy + dy, iz + dz));
                     if (it != cells_.end()) {
                         for (auto i : it->second) {
                             visit(i);
@@ -47,11 +49,7 @@ private:
     [[nodiscard]] std::int64_t coord(double v) const {
         return static_cast<std::int64_t>(std::floor(v / cell_));
     }
-    static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) {
-        const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
-        return u(x) | (u(y) << 21) | (u(z) << 42);
-    }
-    [[nodiscard]] std::uint64_t key(const Vec3& c) const { return pack(coord(c[0]), coord(c[1]), coord(c[2])); }
+    [[nodiscard]] std::uint64_t key(const Vec3& c) const { return cell_key(coord(c[0]), coord(c[1]), coord(c[2])); }
 
     double cell_;
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
