@@ -1,12 +1,17 @@
 #include <pc/cli/tool.h>
 
 #include <fcntl.h>
+#include <malloc.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <climits>
+#include <cstdint>
+#include <cstdlib>
 #include <charconv>
 #include <csignal>
 #include <cstring>
@@ -319,7 +324,39 @@ void Tool::inputs(std::vector<std::string>* paths, const std::string& help, std:
     impl_->min_inputs = min_count;
 }
 
+namespace {
+
+/// Page faults are the largest single cost of a tool on a large cloud (a fault per 4 KiB page
+/// touched for the first time, ~10 us each on a virtual machine): 33k of them were 40 % of
+/// pc_dbscan's wall time on 1M points. So every block comes from the heap (reused after free
+/// without new faults, never trimmed mid-run), the heap grows in one 1 GiB virtual reservation,
+/// and that range asks for transparent huge pages (one fault per 2 MiB; honoured when the system
+/// allows THP on madvise, the Debian default). Memory that is never touched costs nothing.
+/// Not under the sanitizers, which bring their own allocator.
+void tune_allocator() {
+#ifndef PC_SANITIZE
+    constexpr int kReserve = 1 << 30;
+    if (mallopt(M_MMAP_MAX, 0) == 0 || mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0 ||
+        mallopt(M_TOP_PAD, kReserve) == 0) {
+        return;  // a non-glibc allocator: leave it as it is
+    }
+    // Larger than what is left of the heap: forces the extension, with the reservation.
+    void* first = std::malloc(std::size_t{4} << 20);
+    const auto lo = reinterpret_cast<std::uintptr_t>(first);
+    const auto hi = reinterpret_cast<std::uintptr_t>(::sbrk(0));
+    constexpr std::uintptr_t kPage = 4096;
+    const std::uintptr_t from = (lo + kPage - 1) & ~(kPage - 1);
+    if (first != nullptr && hi > from) {
+        (void)::madvise(reinterpret_cast<void*>(from), hi - from, MADV_HUGEPAGE);
+    }
+    std::free(first);
+#endif
+}
+
+}  // namespace
+
 int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
+    tune_allocator();
     std::signal(SIGPIPE, SIG_IGN);  // a closed pipe becomes EPIPE, handled quietly below
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);  // PCL's info level writes to stdout
     Impl& im = *impl_;

@@ -1,8 +1,11 @@
 #include <pc/search/grid.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
+#include <cstdio>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -13,7 +16,7 @@ namespace {
 
 constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis in a 63-bit key
 
-/// LSD radix sort of (key, index) pairs, 11 bits per pass, skipping passes where all digits agree.
+/// LSD radix sort of (key, index) pairs, 12 bits per pass, skipping passes where all digits agree.
 void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx) {
     const std::size_t n = keys.size();
     std::vector<std::uint64_t> k2(n);
@@ -24,19 +27,19 @@ void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& id
         all_and &= k;
     }
     const std::uint64_t varying = all_or ^ all_and;
-    for (int shift = 0; shift < 64; shift += 11) {
-        if (((varying >> shift) & 0x7ff) == 0) {
+    for (int shift = 0; shift < 64; shift += 12) {
+        if (((varying >> shift) & 0xfff) == 0) {
             continue;
         }
-        std::size_t count[2049] = {};
+        std::vector<std::size_t> count(4097, 0);
         for (auto k : keys) {
-            ++count[((k >> shift) & 0x7ff) + 1];
+            ++count[((k >> shift) & 0xfff) + 1];
         }
-        for (int b = 0; b < 2048; ++b) {
+        for (int b = 0; b < 4096; ++b) {
             count[b + 1] += count[b];
         }
         for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t at = count[(keys[i] >> shift) & 0x7ff]++;
+            const std::size_t at = count[(keys[i] >> shift) & 0xfff]++;
             k2[at] = keys[i];
             i2[at] = idx[i];
         }
@@ -70,26 +73,29 @@ Bounds finite_bounds(const Cloud& cloud) {
     return b;
 }
 
-/// Mean points per occupied cell of side `cell` over every `stride`-th finite point.
-double occupancy(const Cloud& cloud, const Bounds& b, double cell, std::size_t stride) {
+/// Mean over the points of the number of points in their cell of side `cell` (what a query
+/// pays for; points relative to the lower corner).
+double occupancy(const std::vector<std::array<double, 3>>& points, double cell) {
     std::vector<std::uint64_t> keys;
-    std::size_t seen = 0;
-    for (const auto& p : cloud.points) {
-        if (!is_finite(p) || (seen++ % stride) != 0) {
-            continue;
-        }
-        const double v[3] = {p.x, p.y, p.z};
+    keys.reserve(points.size());
+    for (const auto& v : points) {
         std::uint64_t key = 0;
         for (int a = 0; a < 3; ++a) {
-            const auto c = static_cast<std::uint64_t>(
-                std::min<double>(std::floor((v[a] - b.lo[a]) / cell), kAxisCells - 1));
-            key = (key << 21) | c;
+            key = (key << 21) | static_cast<std::uint64_t>(std::min<double>(std::floor(v[a] / cell), kAxisCells - 1));
         }
         keys.push_back(key);
     }
     std::sort(keys.begin(), keys.end());
-    const auto unique = static_cast<double>(std::unique(keys.begin(), keys.end()) - keys.begin());
-    return unique > 0 ? static_cast<double>(keys.size()) / unique : 1.0;
+    double sum_sq = 0;
+    for (std::size_t i = 0; i < keys.size();) {
+        std::size_t j = i;
+        while (j < keys.size() && keys[j] == keys[i]) {
+            ++j;
+        }
+        sum_sq += static_cast<double>(j - i) * static_cast<double>(j - i);
+        i = j;
+    }
+    return keys.empty() ? 1.0 : sum_sq / static_cast<double>(keys.size());
 }
 
 /// Inserts (dd, i) into the ascending (d², index) list of at most k entries.
@@ -112,13 +118,23 @@ inline void insert_candidate(std::uint32_t i, double dd, std::size_t k,
     d2[at] = dd;
 }
 
+/// out[j] = squared distance from (qx, qy, qz) to (x[j], y[j], z[j]); a loop the compiler
+/// vectorises (the columns do not alias).
+void squared_distances(const double* __restrict x, const double* __restrict y,
+                       const double* __restrict z, std::size_t m, double qx, double qy, double qz,
+                       double* __restrict out) {
+    for (std::size_t j = 0; j < m; ++j) {
+        const double ex = x[j] - qx, ey = y[j] - qy, ez = z[j] - qz;
+        out[j] = ex * ex + ey * ey + ez * ez;
+    }
+}
+
 constexpr std::int64_t kMaxRing = 2;       // rings searched before falling back to the tree
 constexpr std::uint32_t kLeafSize = 16;
 
 }  // namespace
 
-double Grid::suggest_cell(const Cloud& cloud) {
-    constexpr double kTarget = 4.0;  // points per occupied cell in the full cloud
+double Grid::suggest_cell(const Cloud& cloud, double target) {
     const Bounds b = finite_bounds(cloud);
     if (b.n < 2) {
         return 1.0;
@@ -130,25 +146,86 @@ double Grid::suggest_cell(const Cloud& cloud) {
     if (!(extent > 0)) {
         return 1.0;  // all points coincide
     }
-    const std::size_t stride = std::max<std::size_t>(1, b.n / 200000);
-    const double s = static_cast<double>(stride);
-    // Cells small enough that every axis fits, then measure how occupancy grows with the cell
-    // side (2^d for a d-dimensional point set) and solve for the target occupancy.
-    double cell = std::max(extent / static_cast<double>(kAxisCells - 2),
-                           extent / std::cbrt(static_cast<double>(b.n)));
+    const double floor_cell = extent / static_cast<double>(kAxisCells - 2);
+    // First guess: the cell of a uniform 3-D cloud; surfaces and lines need smaller ones.
+    double cell = std::max(floor_cell, extent / std::cbrt(static_cast<double>(b.n)));
+    // Measured on the points of a fixed subset of blocks (side 32 first guesses, about one in
+    // `stride`, chosen by hash): whole blocks keep the local density, where every stride-th
+    // point would thin every cell and bias the mean. Every point when the cloud is small.
+    const std::size_t stride = std::max<std::size_t>(1, b.n / 50000);
+    const std::uint64_t keep_below = ~std::uint64_t{0} / stride;
+    const double block = 32 * cell;
+    std::vector<std::array<double, 3>> sample;
+    for (const auto& p : cloud.points) {
+        if (!is_finite(p)) {
+            continue;
+        }
+        const std::array<double, 3> v = {p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]};
+        std::uint64_t block_key = 0;
+        for (int a = 0; a < 3; ++a) {
+            block_key = (block_key << 21) | static_cast<std::uint64_t>(std::min<double>(v[a] / block, kAxisCells - 1));
+        }
+        if (stride == 1 || (block_key + 1) * 0x9E3779B97F4A7C15ull < keep_below) {
+            sample.push_back(v);
+        }
+    }
+    if (sample.size() < 1000) {  // too few blocks: every point
+        sample.clear();
+        for (const auto& p : cloud.points) {
+            if (is_finite(p)) {
+                sample.push_back({p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]});
+            }
+        }
+    }
+    // Measure how occupancy grows with the cell side (2^d for a d-dimensional point set) and
+    // solve for the target occupancy.
     for (int iter = 0; iter < 3; ++iter) {
-        const double a1 = occupancy(cloud, b, cell, stride) * s;
-        const double a2 = occupancy(cloud, b, 2 * cell, stride) * s;
+        const double a1 = occupancy(sample, cell);
+        const double a2 = occupancy(sample, 2 * cell);
         const double d = std::clamp(std::log2(std::max(a2 / a1, 1.0)), 1.0, 3.0);
-        const double next = cell * std::pow(kTarget / a1, 1.0 / d);
-        const double floor_cell = extent / static_cast<double>(kAxisCells - 2);
+        const double next = cell * std::pow(target / a1, 1.0 / d);
         cell = std::max(next, floor_cell);
-        if (a1 > kTarget / 2 && a1 < kTarget * 2) {
+        if (a1 > target / 2 && a1 < target * 2) {
             break;
         }
     }
     return cell;
 }
+
+namespace {
+
+/// Open-addressing table of `count` keys (key_of(i) for i < count): slot holds i + 1, 0 = empty.
+template <class KeyOf>
+void build_table(std::size_t count, KeyOf key_of, std::vector<std::uint32_t>& table,
+                 std::uint64_t& mask, int& shift) {
+    std::size_t cap = 16;
+    int bits = 4;
+    while (cap < 2 * count) {
+        cap *= 2;
+        ++bits;
+    }
+    table.assign(cap, 0);
+    mask = cap - 1;
+    shift = 64 - bits;
+    for (std::size_t i = 0; i < count; ++i) {
+        std::uint64_t h = (key_of(i) * 0x9E3779B97F4A7C15ull) >> shift;
+        while (table[h & mask] != 0) {
+            ++h;
+        }
+        table[h & mask] = static_cast<std::uint32_t>(i + 1);
+    }
+}
+
+int bit_width(std::int64_t v) {
+    int b = 0;
+    while (v > 0) {
+        ++b;
+        v >>= 1;
+    }
+    return b;
+}
+
+}  // namespace
 
 Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
     if (!(cell > 0) || !std::isfinite(cell)) {
@@ -161,6 +238,10 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         if (b.n) {
             cell_ = std::max(cell_, (b.hi[a] - b.lo[a]) / static_cast<double>(kAxisCells - 4));
         }
+    }
+    for (int a = 0; a < 3 && b.n; ++a) {
+        dims_[a] = coord(static_cast<float>(b.hi[a]), a) + 1;
+        bits_[a] = bit_width(dims_[a] - 1);
     }
     std::vector<std::uint64_t> keys;
     keys.reserve(b.n);
@@ -182,25 +263,18 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         xyz_[3 * s + 2] = p.z;
         if (s == 0 || keys[s] != keys[s - 1]) {
             cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
+            if (s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2])) {
+                row_begin_.push_back(static_cast<std::uint32_t>(cells_.size() - 1));
+            }
         }
         cells_.back().end = static_cast<std::uint32_t>(s + 1);
     }
-    std::size_t cap = 16;
-    int bits = 4;
-    while (cap < 2 * cells_.size()) {
-        cap *= 2;
-        ++bits;
-    }
-    table_.assign(cap, 0);
-    mask_ = cap - 1;
-    shift_ = 64 - bits;
-    for (std::uint32_t c = 0; c < cells_.size(); ++c) {
-        std::uint64_t h = slot(cells_[c].key);
-        while (table_[h & mask_] != 0) {
-            ++h;
-        }
-        table_[h & mask_] = c + 1;
-    }
+    std::vector<std::uint64_t>().swap(keys);
+    row_begin_.push_back(static_cast<std::uint32_t>(cells_.size()));
+    build_table(cells_.size(), [&](std::size_t c) { return cells_[c].key; }, table_, mask_, shift_);
+    build_table(row_begin_.size() - 1,
+                [&](std::size_t r) { return cells_[row_begin_[r]].key >> bits_[2]; }, row_table_,
+                row_mask_, row_shift_);
 }
 
 std::int64_t Grid::coord(float v, int axis) const {
@@ -209,26 +283,123 @@ std::int64_t Grid::coord(float v, int axis) const {
     return static_cast<std::int64_t>(std::clamp(c, -1e12, 1e12));
 }
 
-std::uint64_t Grid::pack(std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x) << 42) | (static_cast<std::uint64_t>(y) << 21) |
-           static_cast<std::uint64_t>(z);
+void Grid::unpack(std::uint64_t key, std::int64_t out[3]) const {
+    out[2] = static_cast<std::int64_t>(key & ((std::uint64_t{1} << bits_[2]) - 1));
+    key >>= bits_[2];
+    out[1] = static_cast<std::int64_t>(key & ((std::uint64_t{1} << bits_[1]) - 1));
+    out[0] = static_cast<std::int64_t>(key >> bits_[1]);
 }
 
 const Grid::Cell* Grid::find(std::int64_t x, std::int64_t y, std::int64_t z) const {
-    if (x < 0 || y < 0 || z < 0 || x >= kAxisCells || y >= kAxisCells || z >= kAxisCells) {
+    if (!inside(x, y, z)) {
         return nullptr;
     }
     const std::uint64_t key = pack(x, y, z);
     for (std::uint64_t h = slot(key);; ++h) {
-        const std::uint32_t slot = table_[h & mask_];
-        if (slot == 0) {
+        const std::uint32_t at = table_[h & mask_];
+        if (at == 0) {
             return nullptr;
         }
-        if (cells_[slot - 1].key == key) {
-            return &cells_[slot - 1];
+        if (cells_[at - 1].key == key) {
+            return &cells_[at - 1];
         }
     }
 }
+
+std::pair<std::uint32_t, std::uint32_t> Grid::row(std::int64_t x, std::int64_t y) const {
+    if (!inside(x, y, 0)) {
+        return {0, 0};
+    }
+    const std::uint64_t key = pack(x, y, 0) >> bits_[2];
+    for (std::uint64_t h = (key * 0x9E3779B97F4A7C15ull) >> row_shift_;; ++h) {
+        const std::uint32_t at = row_table_[h & row_mask_];
+        if (at == 0) {
+            return {0, 0};
+        }
+        if ((cells_[row_begin_[at - 1]].key >> bits_[2]) == key) {
+            return {row_begin_[at - 1], row_begin_[at]};
+        }
+    }
+}
+
+struct Grid::RowCursor {
+    const Grid& g;
+    std::uint64_t row_key = ~std::uint64_t{0};
+    bool started = false;
+    std::uint32_t row_at[3] = {};          // per dx: first row not below (x + dx, y - 1)
+    std::uint32_t at[9] = {}, end[9] = {};  // per (dx, dy): cells of that row not yet passed
+
+    /// The existing cells among c's 3x3x3 neighbourhood (c included), ascending. Calls for one
+    /// cursor must come in ascending c: rows are then found by moving forward, not by hashing.
+    void neighbours(std::uint32_t c, std::vector<std::uint32_t>& out) {
+        out.clear();
+        const std::uint64_t key = g.cells_[c].key;
+        std::int64_t xyz[3];
+        g.unpack(key, xyz);
+        if ((key >> g.bits_[2]) != row_key) {
+            row_key = key >> g.bits_[2];
+            next_row(xyz[0], xyz[1]);
+        }
+        const std::uint64_t zmask = (std::uint64_t{1} << g.bits_[2]) - 1;
+        for (int j = 0; j < 9; ++j) {
+            // Rows ascend with (dx, dy), cells within a row with z: the output is ascending.
+            while (at[j] < end[j] && static_cast<std::int64_t>(g.cells_[at[j]].key & zmask) < xyz[2] - 1) {
+                ++at[j];
+            }
+            for (std::uint32_t t = at[j];
+                 t < end[j] && static_cast<std::int64_t>(g.cells_[t].key & zmask) <= xyz[2] + 1; ++t) {
+                out.push_back(t);
+            }
+        }
+    }
+
+private:
+    [[nodiscard]] std::uint64_t key_of_row(std::uint32_t r) const {
+        return g.cells_[g.row_begin_[r]].key >> g.bits_[2];
+    }
+    void next_row(std::int64_t x, std::int64_t y) {
+        const auto rows = static_cast<std::uint32_t>(g.row_begin_.size() - 1);
+        for (int dx = -1; dx <= 1; ++dx) {
+            const std::int64_t nx = x + dx;
+            const bool valid_x = nx >= 0 && nx < g.dims_[0];
+            std::uint32_t& r = row_at[dx + 1];
+            if (valid_x) {
+                const std::uint64_t from = g.pack(nx, std::max<std::int64_t>(y - 1, 0), 0) >> g.bits_[2];
+                if (!started) {  // first row of the run: binary search
+                    std::uint32_t lo = 0, hi = rows;
+                    while (lo < hi) {
+                        const std::uint32_t mid = lo + (hi - lo) / 2;
+                        if (key_of_row(mid) < from) {
+                            lo = mid + 1;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    r = lo;
+                }
+                while (r < rows && key_of_row(r) < from) {
+                    ++r;
+                }
+            }
+            for (int dy = -1; dy <= 1; ++dy) {
+                const int j = 3 * (dx + 1) + (dy + 1);
+                at[j] = end[j] = 0;
+                const std::int64_t ny = y + dy;
+                if (!valid_x || ny < 0 || ny >= g.dims_[1]) {
+                    continue;
+                }
+                const std::uint64_t want = g.pack(nx, ny, 0) >> g.bits_[2];
+                for (std::uint32_t q = r; q < rows && q < r + 3 && key_of_row(q) <= want; ++q) {
+                    if (key_of_row(q) == want) {
+                        at[j] = g.row_begin_[q];
+                        end[j] = g.row_begin_[q + 1];
+                    }
+                }
+            }
+        }
+        started = true;
+    }
+};
 
 void Grid::knn(std::uint32_t self,
                std::size_t k,
@@ -256,7 +427,7 @@ void Grid::search(const pcl::PointXYZ& q,
     // A query outside the grid's range (pc_compare's other cloud) goes to the tree at once.
     bool outside = false;
     for (int a = 0; a < 3; ++a) {
-        outside = outside || c[a] < -1 || c[a] > kAxisCells;
+        outside = outside || c[a] < -1 || c[a] > dims_[a];
     }
     // Distance from q to the nearest face of its own cell: points in ring r+1 are at least
     // r * cell + margin away.
@@ -408,33 +579,91 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
 }
 
 void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {
-    out.clear();
-    const std::uint64_t key = cells_[c].key;
-    const auto x = static_cast<std::int64_t>(key >> 42);
-    const auto y = static_cast<std::int64_t>((key >> 21) & (kAxisCells - 1));
-    const auto z = static_cast<std::int64_t>(key & (kAxisCells - 1));
-    for (std::int64_t dx = -1; dx <= 1; ++dx) {
-        for (std::int64_t dy = -1; dy <= 1; ++dy) {
-            for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                if (const Cell* n = find(x + dx, y + dy, z + dz)) {
-                    out.push_back(static_cast<std::uint32_t>(n - cells_.data()));
-                }
-            }
-        }
-    }
-    std::sort(out.begin(), out.end());
+    RowCursor cursor{*this};
+    cursor.neighbours(static_cast<std::uint32_t>(c), out);
 }
 
 void Grid::sweep_cells(
     const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f) const {
+    // Runs of consecutive cells per task, so that the row cursors mostly move forward.
+    constexpr std::int64_t kRun = 256;
     const auto cells = static_cast<std::int64_t>(cells_.size());
+    const std::int64_t runs = (cells + kRun - 1) / kRun;
 #pragma omp parallel
     {
         std::vector<std::uint32_t> nb;
-#pragma omp for schedule(dynamic, 64)
-        for (std::int64_t c = 0; c < cells; ++c) {
-            neighbour_cells(static_cast<std::size_t>(c), nb);
-            f(static_cast<std::uint32_t>(c), nb);
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t run = 0; run < runs; ++run) {
+            RowCursor cursor{*this};
+            for (std::int64_t c = run * kRun; c < std::min(cells, (run + 1) * kRun); ++c) {
+                cursor.neighbours(static_cast<std::uint32_t>(c), nb);
+                f(static_cast<std::uint32_t>(c), nb);
+            }
+        }
+    }
+}
+
+/// Candidate points as columns (so that the distance loop vectorises) and their sorted positions.
+struct detail::Columns {
+    std::vector<double> x, y, z, d2;
+    std::vector<std::uint32_t> pos;
+    void clear() {
+        x.clear();
+        y.clear();
+        z.clear();
+        pos.clear();
+    }
+    void push(const float* p, std::uint32_t t) {
+        x.push_back(p[0]);
+        y.push_back(p[1]);
+        z.push_back(p[2]);
+        pos.push_back(t);
+    }
+};
+
+namespace {
+
+/// A neighbour cell of the 3x3x3 block: its index, offset from the centre, |offset|_1.
+struct Segment {
+    std::uint32_t cell;
+    std::int8_t d[3];
+    std::uint8_t rank;
+};
+
+/// Per-thread scratch of all_knn (one thread_local look-up per cell, not per access).
+struct KnnScratch {
+    std::vector<std::uint32_t> idx, far;
+    std::vector<double> d2;
+    std::vector<Segment> segments;
+    detail::Columns ring2;
+};
+
+}  // namespace
+
+void Grid::gather_ring2(const std::int64_t xyz[3], detail::Columns& out) const {
+    out.clear();
+    const std::uint64_t zmask = (std::uint64_t{1} << bits_[2]) - 1;
+    for (std::int64_t dx = -2; dx <= 2; ++dx) {
+        for (std::int64_t dy = -2; dy <= 2; ++dy) {
+            const auto [rb, re] = row(xyz[0] + dx, xyz[1] + dy);
+            const bool inner_row = std::abs(dx) <= 1 && std::abs(dy) <= 1;
+            // First cell of the row with z >= z - 2.
+            const std::uint64_t from = static_cast<std::uint64_t>(std::max<std::int64_t>(xyz[2] - 2, 0));
+            const Cell* first = std::partition_point(
+                cells_.data() + rb, cells_.data() + re,
+                [&](const Cell& cell) { return (cell.key & zmask) < from; });
+            for (const Cell* cell = first; cell < cells_.data() + re; ++cell) {
+                const auto cz = static_cast<std::int64_t>(cell->key & zmask);
+                if (cz > xyz[2] + 2) {
+                    break;
+                }
+                if (inner_row && std::abs(cz - xyz[2]) <= 1) {
+                    continue;  // in the 3x3x3 block, already seen
+                }
+                for (std::uint32_t t = cell->begin; t < cell->end; ++t) {
+                    out.push(point(t), t);
+                }
+            }
         }
     }
 }
@@ -443,40 +672,120 @@ void Grid::all_knn(std::size_t k,
                    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
                                             const std::vector<double>&)>& f) const {
     const std::size_t others = order_.empty() ? 0 : order_.size() - 1;
-    build_tree();  // here, not lazily inside the parallel sweep, so that its build is parallel too
+    std::vector<std::uint32_t> far_points;  // left for the k-d tree
+    std::mutex far_mutex;
+    // Offers the candidates of `cols` (other than sorted position s) to the k-list.
+    const auto offer = [&](KnnScratch& w, detail::Columns& cols, std::uint32_t s, const double q[3]) {
+        const std::size_t m = cols.pos.size();
+        cols.d2.resize(m);
+        squared_distances(cols.x.data(), cols.y.data(), cols.z.data(), m, q[0], q[1], q[2], cols.d2.data());
+        const double* d = cols.d2.data();
+        const std::uint32_t* pos = cols.pos.data();
+        double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < m; ++j) {
+            if (d[j] <= worst && pos[j] != s) {
+                insert_candidate(order_[pos[j]], d[j], k, w.idx, w.d2);
+                if (w.idx.size() == k) {
+                    worst = w.d2.back();
+                }
+            }
+        }
+    };
     sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
-        thread_local std::vector<std::uint32_t> idx;
-        thread_local std::vector<double> d2;
-        const std::uint64_t key = cells_[c].key;
-        const double lo[3] = {origin_[0] + static_cast<double>(key >> 42) * cell_,
-                              origin_[1] + static_cast<double>((key >> 21) & (kAxisCells - 1)) * cell_,
-                              origin_[2] + static_cast<double>(key & (kAxisCells - 1)) * cell_};
+        thread_local KnnScratch scratch;
+        KnnScratch& w = scratch;
+        w.far.clear();
+        std::int64_t xyz[3];
+        unpack(cells_[c].key, xyz);
+        const double lo[3] = {origin_[0] + static_cast<double>(xyz[0]) * cell_,
+                              origin_[1] + static_cast<double>(xyz[1]) * cell_,
+                              origin_[2] + static_cast<double>(xyz[2]) * cell_};
+        // The 3x3x3 block's cells, nearest first (own cell, faces, edges, corners), each with
+        // its offset so that a point can skip cells farther than its current k-th distance.
+        w.segments.clear();
+        for (std::uint32_t nc : nb) {
+            std::int64_t n[3];
+            unpack(cells_[nc].key, n);
+            Segment seg{nc, {static_cast<std::int8_t>(n[0] - xyz[0]), static_cast<std::int8_t>(n[1] - xyz[1]),
+                             static_cast<std::int8_t>(n[2] - xyz[2])}, 0};
+            seg.rank = static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
+            w.segments.push_back(seg);
+        }
+        std::stable_sort(w.segments.begin(), w.segments.end(),
+                         [](const Segment& a, const Segment& b) { return a.rank < b.rank; });
+        bool ring2_ready = false;
         for (std::uint32_t s = cells_[c].begin; s < cells_[c].end; ++s) {
-            idx.clear();
-            d2.clear();
-            for (std::uint32_t nc : nb) {
-                for (std::uint32_t t = cells_[nc].begin; t < cells_[nc].end; ++t) {
-                    if (t != s) {
-                        insert_candidate(order_[t], dist2(s, t), k, idx, d2);
+            w.idx.clear();
+            w.d2.clear();
+            const double q[3] = {xyz_[3 * s], xyz_[3 * s + 1], xyz_[3 * s + 2]};
+            // Squared gaps from q to the faces of its cell, below (0) and above (1), per axis.
+            double gap[3][3];
+            for (int a = 0; a < 3; ++a) {
+                const double below = q[a] - lo[a], above = lo[a] + cell_ - q[a];
+                gap[a][0] = below * below;
+                gap[a][1] = 0;
+                gap[a][2] = above * above;
+            }
+            double worst = std::numeric_limits<double>::infinity();
+            for (const Segment& seg : w.segments) {
+                const double g = gap[0][seg.d[0] + 1] + gap[1][seg.d[1] + 1] + gap[2][seg.d[2] + 1];
+                if (g > worst) {
+                    continue;  // every point of that cell is farther than the k-th
+                }
+                for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end; ++t) {
+                    const double dd = dist2(s, t);
+                    if (dd <= worst && t != s) {
+                        insert_candidate(order_[t], dd, k, w.idx, w.d2);
+                        if (w.idx.size() == k) {
+                            worst = w.d2.back();
+                        }
                     }
                 }
             }
             // The 3x3x3 block covers every point closer than one cell plus the distance to the
-            // nearest face of the point's own cell.
+            // nearest face of the point's own cell; the 5x5x5 block one cell more.
             double margin = cell_;
             for (int a = 0; a < 3; ++a) {
-                const double v = xyz_[3 * s + a];
-                margin = std::min({margin, v - lo[a], lo[a] + cell_ - v});
+                margin = std::min({margin, q[a] - lo[a], lo[a] + cell_ - q[a]});
             }
-            const double reach = cell_ + std::max(margin, 0.0);
-            const bool done = (idx.size() == k && d2.back() < reach * reach) ||
-                              (idx.size() == others && others < k);
-            if (!done) {
-                tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);  // sparse: skip more rings
+            margin = std::max(margin, 0.0);
+            const auto done = [&](double reach) {
+                return (w.idx.size() == k && w.d2.back() < reach * reach) ||
+                       (w.idx.size() == others && others < k);
+            };
+            if (!done(cell_ + margin)) {
+                if (!ring2_ready) {  // gathered once per cell, for its points that need it
+                    gather_ring2(xyz, w.ring2);
+                    ring2_ready = true;
+                }
+                offer(w, w.ring2, s, q);
+                if (!done(2 * cell_ + margin)) {
+                    w.far.push_back(s);  // sparse: the tree bounds the work
+                    continue;
+                }
             }
-            f(order_[s], idx, d2);
+            f(order_[s], w.idx, w.d2);
+        }
+        if (!w.far.empty()) {
+            const std::lock_guard<std::mutex> lock(far_mutex);
+            far_points.insert(far_points.end(), w.far.begin(), w.far.end());
         }
     });
+    if (far_points.empty()) {
+        return;
+    }
+    build_tree();  // here, outside the sweep, so that its build is parallel too
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> idx;
+        std::vector<double> d2;
+#pragma omp for schedule(dynamic, 256)
+        for (std::int64_t at = 0; at < static_cast<std::int64_t>(far_points.size()); ++at) {
+            const std::uint32_t s = far_points[static_cast<std::size_t>(at)];
+            tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);
+            f(order_[s], idx, d2);
+        }
+    }
 }
 
 double median_spacing(const Cloud& cloud, std::size_t samples) {

@@ -53,6 +53,84 @@ struct ConcurrentForest {
     }
 };
 
+/// Local component counts above this are not tracked (all pairs are then looked at).
+constexpr std::uint8_t kMany = 255;
+
+/// Squared gap between two boxes {lo x, lo y, lo z, hi x, hi y, hi z} (0 when they overlap).
+double box_gap2(const float* a, const float* b) {
+    double g = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = std::max({0.0, double{a[k]} - b[k + 3], double{b[k]} - a[k + 3]});
+        g += d * d;
+    }
+    return g;
+}
+
+/// Squared distance from sorted point s to a box (0 inside). Slightly below the true distance
+/// is harmless (only used to skip work), so float boxes are fine.
+double point_gap2(const search::Grid& grid, std::uint32_t s, const float* b) {
+    const float* p = grid.point(s);
+    double g = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double d = std::max({0.0, double{b[k]} - p[k], double{p[k]} - b[k + 3]});
+        g += d * d;
+    }
+    return g;
+}
+
+/// Joins the core points of one cell [b, e) that are within eps (sequential union-find on the
+/// cell's points, then written to the forest), numbers the local components 0..n-1 in `comp`,
+/// sets `count` to n (kMany when n > 64) and `box` to the core points' AABB.
+void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e, double eps2,
+                      const std::vector<std::uint8_t>& core, ConcurrentForest& forest,
+                      std::vector<std::uint8_t>& comp, std::uint8_t& count, float* box) {
+    thread_local std::vector<std::uint32_t> up;
+    up.resize(e - b);
+    const auto root = [&](std::uint32_t x) {
+        while (up[x] != x) {
+            x = up[x] = up[up[x]];
+        }
+        return x;
+    };
+    for (int k = 0; k < 3; ++k) {
+        box[k] = std::numeric_limits<float>::infinity();
+        box[k + 3] = -box[k];
+    }
+    for (std::uint32_t s = b; s < e; ++s) {
+        up[s - b] = s - b;
+        if (!core[s]) {
+            continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+            box[k] = std::min(box[k], grid.point(s)[k]);
+            box[k + 3] = std::max(box[k + 3], grid.point(s)[k]);
+        }
+        for (std::uint32_t t = b; t < s; ++t) {
+            if (core[t] && grid.dist2(s, t) <= eps2) {
+                const std::uint32_t rs = root(s - b), rt = root(t - b);
+                if (rs != rt) {
+                    up[std::max(rs, rt)] = std::min(rs, rt);
+                }
+            }
+        }
+    }
+    std::uint32_t n = 0;
+    for (std::uint32_t s = b; s < e; ++s) {
+        if (!core[s]) {
+            continue;
+        }
+        const std::uint32_t r = root(s - b);  // the smallest member: seen before the others
+        if (r == s - b) {
+            comp[s] = static_cast<std::uint8_t>(std::min<std::uint32_t>(n, kMany));
+            ++n;
+        } else {
+            comp[s] = comp[r + b];
+            forest.parent[s].store(r + b, std::memory_order_relaxed);
+        }
+    }
+    count = static_cast<std::uint8_t>(n <= 64 ? n : kMany);
+}
+
 }  // namespace
 
 void DbscanParams::validate() const {
@@ -76,35 +154,78 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
     std::vector<std::uint8_t> core(m, 0);
 
     // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
-    //    once there are enough).
+    //    once there are enough; the own cell first, where most neighbours are). Then the core
+    //    points of each cell are joined among themselves (a cell-local union-find, written to the
+    //    forest: nobody else reads these entries in this pass) and numbered by local component.
+    ConcurrentForest forest(m);
+    std::vector<std::uint8_t> comp(m, 0);               // local component of a core point
+    std::vector<std::uint8_t> comps(grid.cell_count());  // per cell; kMany = too many to track
+    std::vector<float> box(6 * grid.cell_count());      // per cell: AABB of its core points
+    std::vector<std::uint32_t> first_core(grid.cell_count());  // per cell: its first core point
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
-        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+        const std::uint32_t b = grid.cell_begin(c), e = grid.cell_end(c);
+        for (std::uint32_t s = b; s < e; ++s) {
             std::uint32_t found = 0;
+            for (std::uint32_t t = b; t < e && found < params.min_points; ++t) {
+                found += grid.dist2(s, t) <= eps2;
+            }
             for (std::size_t k = 0; k < nb.size() && found < params.min_points; ++k) {
+                if (nb[k] == c) {
+                    continue;
+                }
                 for (std::uint32_t t = grid.cell_begin(nb[k]); t < grid.cell_end(nb[k]); ++t) {
                     found += grid.dist2(s, t) <= eps2;
                 }
             }
             core[s] = found >= params.min_points;
         }
+        local_components(grid, b, e, eps2, core, forest, comp, comps[c], &box[6 * c]);
+        first_core[c] = static_cast<std::uint32_t>(
+            std::find(core.begin() + b, core.begin() + e, 1) - core.begin());
     });
 
-    // 2. Connected components of core points. Each pair is seen once: t > s lies in this cell
-    //    or in a neighbour cell with a larger index.
-    ConcurrentForest forest(m);
+    // 2. Components across cells: for each pair of neighbouring cells (each pair once), core
+    //    points within eps join their components. A pair of local components already joined is
+    //    not looked at again, and cells (or points) farther than eps from the other cell's core
+    //    box are skipped.
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
-        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
-            if (!core[s]) {
+        if (comps[c] == 0) {
+            return;
+        }
+        const float* bc = &box[6 * c];
+        for (std::uint32_t nc : nb) {
+            if (nc <= c || comps[nc] == 0) {
                 continue;
             }
-            for (std::uint32_t nc : nb) {
-                if (nc < c) {
+            const float* bn = &box[6 * nc];
+            if (box_gap2(bc, bn) > eps2) {
+                continue;
+            }
+            if (comps[c] == 1 && comps[nc] == 1 &&
+                forest.find(first_core[c]) == forest.find(first_core[nc])) {
+                continue;  // already joined through other cells
+            }
+            const bool track = comps[c] != kMany && comps[nc] != kMany && comps[c] * comps[nc] <= 64;
+            std::uint64_t joined = 0;  // bit comp_s * comps[nc] + comp_t
+            const std::uint64_t all =
+                track ? (comps[c] * comps[nc] == 64 ? ~std::uint64_t{0}
+                                                    : (std::uint64_t{1} << (comps[c] * comps[nc])) - 1)
+                      : 0;
+            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c) && (!track || joined != all); ++s) {
+                if (!core[s] || point_gap2(grid, s, bn) > eps2) {
                     continue;
                 }
-                for (std::uint32_t t = std::max(grid.cell_begin(nc), s + 1); t < grid.cell_end(nc); ++t) {
-                    if (core[t] && grid.dist2(s, t) <= eps2) {
-                        forest.unite(s, t);
+                for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                    if (!core[t]) {
+                        continue;
                     }
+                    const std::uint64_t bit =
+                        track ? std::uint64_t{1} << (comp[s] * comps[nc] + comp[t]) : 0;
+                    if ((joined & bit) != 0 || grid.dist2(s, t) > eps2) {
+                        continue;
+                    }
+                    forest.unite(s, t);
+                    joined |= bit;
                 }
             }
         }

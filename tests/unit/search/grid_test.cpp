@@ -1,4 +1,8 @@
 #include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -81,6 +85,72 @@ TEST(Grid, RadiusQueryMatchesBruteForceIncludingExactDistances) {
                 }
             }
             ASSERT_EQ(got, want) << "point " << i << " r " << r;
+        }
+    }
+}
+
+/// Dense blobs, a lattice, a sparse scatter and far floaters: every path of all_knn (the 3x3x3
+/// block, the next ring, the k-d tree for isolated points) is taken.
+Cloud mixed_density_cloud() {
+    Cloud c = test::concat(test::ball({0, 0, 0}, 0.05f, 1500, 7), test::grid({0.2f, 0, 0}, 6, 0.02f));
+    c = test::concat(c, test::uniform(200, 1.0f, 8));
+    c.push_back({5, 5, 5});
+    c.push_back({-3, 2, 0});
+    c.push_back(test::nan_point());
+    return c;
+}
+
+TEST(Grid, AllKnnMatchesBruteForceAcrossDensities) {
+    const Cloud c = mixed_density_cloud();
+    for (std::size_t k : {1u, 5u, 12u}) {
+        for (double cell : {0.005, 0.02, Grid::suggest_cell(c)}) {
+            const Grid grid(c, cell);
+            std::vector<int> seen(c.size(), 0);
+            std::mutex m;
+            grid.all_knn(k, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx,
+                                const std::vector<double>& d2) {
+                const auto ref = brute_knn(c, i, k);
+                const std::lock_guard<std::mutex> lock(m);
+                ++seen[i];
+                ASSERT_EQ(idx.size(), ref.size()) << "point " << i;
+                for (std::size_t r = 0; r < ref.size(); ++r) {
+                    EXPECT_EQ(d2[r], ref[r].first) << "point " << i << " rank " << r;
+                    EXPECT_EQ(idx[r], ref[r].second) << "point " << i << " rank " << r;
+                }
+            });
+            for (std::uint32_t i = 0; i < c.size(); ++i) {
+                EXPECT_EQ(seen[i], is_finite(c[i]) ? 1 : 0) << "point " << i;
+            }
+        }
+    }
+}
+
+/// Mean over the points of how many points share their cell.
+double point_occupancy(const Cloud& c, double cell) {
+    std::map<std::tuple<long, long, long>, int> count;
+    for (const auto& p : c) {
+        ++count[{std::lround(std::floor(p.x / cell)), std::lround(std::floor(p.y / cell)),
+                 std::lround(std::floor(p.z / cell))}];
+    }
+    double sum = 0;
+    for (const auto& [key, n] : count) {
+        sum += static_cast<double>(n) * n;
+    }
+    return sum / static_cast<double>(c.size());
+}
+
+TEST(Grid, SuggestedCellGivesTheTargetOccupancyOnVolumesAndSurfaces) {
+    Cloud plane;
+    for (int i = 0; i < 300; ++i) {
+        for (int j = 0; j < 300; ++j) {
+            plane.push_back({0.01f * static_cast<float>(i), 0.01f * static_cast<float>(j), 0.0f});
+        }
+    }
+    for (const Cloud& c : {test::uniform(90000, 1.0f, 9), plane}) {
+        for (double target : {4.0, 8.0}) {
+            const double occ = point_occupancy(c, Grid::suggest_cell(c, target));
+            EXPECT_GT(occ, target / 2);
+            EXPECT_LT(occ, target * 2);
         }
     }
 }

@@ -88,6 +88,21 @@ TEST(Dbscan, MatchesBruteForceOnRandomClouds) {
     }
 }
 
+TEST(Dbscan, MatchesBruteForceOnDenseBlobsNearEachOther) {
+    // Many points per cell (cell-local components, cell pairs joined once) and blobs that
+    // touch, nearly touch or are bridged by a thin chain.
+    Cloud c = test::concat(test::ball({0, 0, 0}, 0.05f, 900, 31), test::ball({0.11f, 0, 0}, 0.05f, 900, 32));
+    c = test::concat(c, test::ball({0.3f, 0, 0}, 0.03f, 600, 33));
+    for (int i = 0; i < 12; ++i) {
+        c.push_back({0.16f + 0.01f * static_cast<float>(i), 0.002f, 0.0f});
+    }
+    c = test::concat(c, test::uniform(300, 0.5f, 34));
+    for (const auto& [eps, min_points] : {std::pair{0.01, 5u}, {0.02, 12u}, {0.006, 3u}, {0.05, 60u}}) {
+        const DbscanResult r = dbscan(c, {.eps = eps, .min_points = min_points});
+        expect_same_partition(r, brute_dbscan(c, eps, min_points));
+    }
+}
+
 TEST(Dbscan, PointsAtExactlyEpsAreNeighbours) {
     // Lattice spacing 0.25 (exact in binary): with eps = 0.25 each inner point has 7 neighbours
     // (itself + 6 at exactly eps); corners 4. sklearn's `<=` makes every point core at 4.

@@ -3,11 +3,16 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <utility>
 #include <vector>
 
 #include <pc/core/cloud.h>
 
 namespace pc::search {
+
+namespace detail {
+struct Columns;  // candidate points as columns (grid.cpp)
+}  // namespace detail
 
 /// A uniform grid over the finite points of a cloud, for exact radius and k-nearest-neighbour
 /// queries. Points are stored sorted by cell, so a cell's points are contiguous in memory.
@@ -26,8 +31,9 @@ public:
     /// than 2^21 cells (queries stay exact). Non-finite points are left out.
     Grid(const Cloud& cloud, double cell);
 
-    /// A cell side giving a few points per occupied cell, for kNN queries (adapts to surfaces).
-    [[nodiscard]] static double suggest_cell(const Cloud& cloud);
+    /// A cell side giving about `target` points per occupied cell (adapts to surfaces and lines:
+    /// the occupancy is measured, not assumed).
+    [[nodiscard]] static double suggest_cell(const Cloud& cloud, double target = 4.0);
 
     /// Calls f(index, d²) for every point with d² <= radius² (itself included); radius <= cell().
     template <class F>
@@ -62,6 +68,8 @@ public:
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
     /// Original cloud index of sorted position s.
     [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return order_[s]; }
+    /// Coordinates (x, y, z) of sorted position s.
+    [[nodiscard]] const float* point(std::uint32_t s) const { return &xyz_[3 * s]; }
     /// Squared distance between sorted positions s and t, in double.
     [[nodiscard]] double dist2(std::uint32_t s, std::uint32_t t) const {
         const double ex = double{xyz_[3 * s]} - xyz_[3 * t];
@@ -79,9 +87,25 @@ private:
         std::uint32_t begin, end;
     };
     [[nodiscard]] std::int64_t coord(float v, int axis) const;
-    [[nodiscard]] static std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z);
+    /// Cell key: x, y, z packed with the fewest bits each axis needs (sorting by key = by x, y, z).
+    [[nodiscard]] std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        return (static_cast<std::uint64_t>(x) << (bits_[1] + bits_[2])) |
+               (static_cast<std::uint64_t>(y) << bits_[2]) | static_cast<std::uint64_t>(z);
+    }
+    void unpack(std::uint64_t key, std::int64_t out[3]) const;
+    [[nodiscard]] bool inside(std::int64_t x, std::int64_t y, std::int64_t z) const {
+        return x >= 0 && y >= 0 && z >= 0 && x < dims_[0] && y < dims_[1] && z < dims_[2];
+    }
     [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const;
+    /// Cells [first, last) of the row (x, y, all z); empty when the row has no points.
+    [[nodiscard]] std::pair<std::uint32_t, std::uint32_t> row(std::int64_t x, std::int64_t y) const;
+    /// Sequential neighbour-cell enumeration for a run of cells in key order: one row look-up
+    /// per neighbouring row when the row changes, then cursors that only move forward.
+    struct RowCursor;
     void build_tree() const;
+    /// Points of the cells at Chebyshev distance 2 from cell xyz (the 5x5x5 block minus the 3x3x3
+    /// block), as columns and sorted positions.
+    void gather_ring2(const std::int64_t xyz[3], detail::Columns& out) const;
     void search(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
                 std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
     void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
@@ -101,6 +125,10 @@ private:
 
     double cell_ = 1;
     double origin_[3] = {0, 0, 0};
+    std::int64_t dims_[3] = {1, 1, 1};  // cells per axis
+    int bits_[3] = {0, 0, 0};           // bits per axis in a key
+    std::vector<std::uint32_t> row_begin_;  // first cell of each distinct (x, y) row, + sentinel
+    std::vector<std::uint32_t> row_table_;  // open addressing on row keys: row index + 1
     std::vector<float> xyz_;              // sorted by cell, 3 floats per point
     std::vector<std::uint32_t> order_;    // original index of each sorted point
     std::vector<Cell> cells_;
@@ -111,6 +139,8 @@ private:
     [[nodiscard]] std::uint64_t slot(std::uint64_t key) const {
         return (key * 0x9E3779B97F4A7C15ull) >> shift_;
     }
+    std::uint64_t row_mask_ = 0;
+    int row_shift_ = 60;
     const Cloud* cloud_ = nullptr;
 };
 
