@@ -53,21 +53,41 @@ struct Bounds {
     std::size_t n = 0;
 };
 
-Bounds finite_bounds(const Cloud& cloud) {
+Bounds empty_bounds() {
     Bounds b;
     for (int a = 0; a < 3; ++a) {
         b.lo[a] = std::numeric_limits<double>::infinity();
         b.hi[a] = -b.lo[a];
     }
-    for (const auto& p : cloud.points) {
-        if (!is_finite(p)) {
-            continue;
+    return b;
+}
+
+Bounds finite_bounds(const Cloud& cloud) {
+    Bounds b = empty_bounds();
+    const auto n = static_cast<std::int64_t>(cloud.size());
+#pragma omp parallel
+    {
+        Bounds t = empty_bounds();  // not a copy of b, which another thread may be updating
+#pragma omp for schedule(static) nowait
+        for (std::int64_t i = 0; i < n; ++i) {
+            const auto& p = cloud.points[static_cast<std::size_t>(i)];
+            if (!is_finite(p)) {
+                continue;
+            }
+            ++t.n;
+            const double v[3] = {p.x, p.y, p.z};
+            for (int a = 0; a < 3; ++a) {
+                t.lo[a] = std::min(t.lo[a], v[a]);
+                t.hi[a] = std::max(t.hi[a], v[a]);
+            }
         }
-        ++b.n;
-        const double v[3] = {p.x, p.y, p.z};
-        for (int a = 0; a < 3; ++a) {
-            b.lo[a] = std::min(b.lo[a], v[a]);
-            b.hi[a] = std::max(b.hi[a], v[a]);
+#pragma omp critical
+        {
+            b.n += t.n;
+            for (int a = 0; a < 3; ++a) {
+                b.lo[a] = std::min(b.lo[a], t.lo[a]);
+                b.hi[a] = std::max(b.hi[a], t.hi[a]);
+            }
         }
     }
     return b;
@@ -149,32 +169,31 @@ double Grid::suggest_cell(const Cloud& cloud, double target) {
     const double floor_cell = extent / static_cast<double>(kAxisCells - 2);
     // First guess: the cell of a uniform 3-D cloud; surfaces and lines need smaller ones.
     double cell = std::max(floor_cell, extent / std::cbrt(static_cast<double>(b.n)));
-    // Measured on the points of a fixed subset of blocks (side 32 first guesses, about one in
-    // `stride`, chosen by hash): whole blocks keep the local density, where every stride-th
-    // point would thin every cell and bias the mean. Every point when the cloud is small.
-    const std::size_t stride = std::max<std::size_t>(1, b.n / 50000);
-    const std::uint64_t keep_below = ~std::uint64_t{0} / stride;
-    const double block = 32 * cell;
+    // Measured on the points of a subset of blocks (side 8 first guesses, one in `stride` chosen
+    // by hash): whole blocks keep the local density, where every stride-th point would thin
+    // every cell and bias the measure. Blocks are taken more often until the sample holds
+    // enough points (every point when the cloud is small).
+    const std::size_t wanted = std::min<std::size_t>(b.n, 20000);
+    const double block = 8 * cell;
     std::vector<std::array<double, 3>> sample;
-    for (const auto& p : cloud.points) {
-        if (!is_finite(p)) {
-            continue;
-        }
-        const std::array<double, 3> v = {p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]};
-        std::uint64_t block_key = 0;
-        for (int a = 0; a < 3; ++a) {
-            block_key = (block_key << 21) | static_cast<std::uint64_t>(std::min<double>(v[a] / block, kAxisCells - 1));
-        }
-        if (stride == 1 || (block_key + 1) * 0x9E3779B97F4A7C15ull < keep_below) {
-            sample.push_back(v);
-        }
-    }
-    if (sample.size() < 1000) {  // too few blocks: every point
+    for (std::size_t stride = std::max<std::size_t>(1, b.n / 50000);; stride = std::max<std::size_t>(1, stride / 4)) {
+        const std::uint64_t keep_below = ~std::uint64_t{0} / stride;
         sample.clear();
         for (const auto& p : cloud.points) {
-            if (is_finite(p)) {
-                sample.push_back({p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]});
+            if (!is_finite(p)) {
+                continue;
             }
+            const std::array<double, 3> v = {p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]};
+            std::uint64_t block_key = 0;
+            for (int a = 0; a < 3; ++a) {
+                block_key = (block_key << 21) | static_cast<std::uint64_t>(std::min<double>(v[a] / block, kAxisCells - 1));
+            }
+            if (stride == 1 || (block_key + 1) * 0x9E3779B97F4A7C15ull < keep_below) {
+                sample.push_back(v);
+            }
+        }
+        if (sample.size() >= wanted || stride == 1) {
+            break;
         }
     }
     // Measure how occupancy grows with the cell side (2^d for a d-dimensional point set) and
@@ -243,24 +262,37 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         dims_[a] = coord(static_cast<float>(b.hi[a]), a) + 1;
         bits_[a] = bit_width(dims_[a] - 1);
     }
-    std::vector<std::uint64_t> keys;
-    keys.reserve(b.n);
-    order_.reserve(b.n);
-    for (std::uint32_t i = 0; i < cloud.size(); ++i) {
-        const auto& p = cloud[i];
-        if (!is_finite(p)) {
-            continue;
+    std::vector<std::uint64_t> keys(b.n);
+    order_.resize(b.n);
+    if (b.n == cloud.size()) {  // all finite (the usual case): in parallel
+        const auto n = static_cast<std::int64_t>(b.n);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i) {
+            const auto& p = cloud[static_cast<std::size_t>(i)];
+            keys[static_cast<std::size_t>(i)] = pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2));
+            order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
         }
-        keys.push_back(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
-        order_.push_back(i);
+    } else {
+        std::size_t at = 0;
+        for (std::uint32_t i = 0; i < cloud.size(); ++i) {
+            const auto& p = cloud[i];
+            if (is_finite(p)) {
+                keys[at] = pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2));
+                order_[at++] = i;
+            }
+        }
     }
     radix_sort(keys, order_);
     xyz_.resize(3 * order_.size());
-    for (std::size_t s = 0; s < order_.size(); ++s) {
-        const auto& p = cloud[order_[s]];
+    const auto m = static_cast<std::int64_t>(order_.size());
+#pragma omp parallel for schedule(static)
+    for (std::int64_t s = 0; s < m; ++s) {
+        const auto& p = cloud[order_[static_cast<std::size_t>(s)]];
         xyz_[3 * s] = p.x;
         xyz_[3 * s + 1] = p.y;
         xyz_[3 * s + 2] = p.z;
+    }
+    for (std::size_t s = 0; s < order_.size(); ++s) {
         if (s == 0 || keys[s] != keys[s - 1]) {
             cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
             if (s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2])) {
@@ -271,9 +303,13 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
     }
     std::vector<std::uint64_t>().swap(keys);
     row_begin_.push_back(static_cast<std::uint32_t>(cells_.size()));
+    row_key_.resize(row_begin_.size() - 1);
+    for (std::size_t r = 0; r + 1 < row_begin_.size(); ++r) {
+        row_key_[r] = cells_[row_begin_[r]].key >> bits_[2];
+    }
     build_table(cells_.size(), [&](std::size_t c) { return cells_[c].key; }, table_, mask_, shift_);
     build_table(row_begin_.size() - 1,
-                [&](std::size_t r) { return cells_[row_begin_[r]].key >> bits_[2]; }, row_table_,
+                [&](std::size_t r) { return row_key_[r]; }, row_table_,
                 row_mask_, row_shift_);
 }
 
@@ -316,7 +352,7 @@ std::pair<std::uint32_t, std::uint32_t> Grid::row(std::int64_t x, std::int64_t y
         if (at == 0) {
             return {0, 0};
         }
-        if ((cells_[row_begin_[at - 1]].key >> bits_[2]) == key) {
+        if (row_key_[at - 1] == key) {
             return {row_begin_[at - 1], row_begin_[at]};
         }
     }
@@ -354,9 +390,7 @@ struct Grid::RowCursor {
     }
 
 private:
-    [[nodiscard]] std::uint64_t key_of_row(std::uint32_t r) const {
-        return g.cells_[g.row_begin_[r]].key >> g.bits_[2];
-    }
+    [[nodiscard]] std::uint64_t key_of_row(std::uint32_t r) const { return g.row_key_[r]; }
     void next_row(std::int64_t x, std::int64_t y) {
         const auto rows = static_cast<std::uint32_t>(g.row_begin_.size() - 1);
         for (int dx = -1; dx <= 1; ++dx) {

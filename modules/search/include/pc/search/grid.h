@@ -128,6 +128,7 @@ private:
     std::int64_t dims_[3] = {1, 1, 1};  // cells per axis
     int bits_[3] = {0, 0, 0};           // bits per axis in a key
     std::vector<std::uint32_t> row_begin_;  // first cell of each distinct (x, y) row, + sentinel
+    std::vector<std::uint64_t> row_key_;    // key >> bits_[2] of each row
     std::vector<std::uint32_t> row_table_;  // open addressing on row keys: row index + 1
     std::vector<float> xyz_;              // sorted by cell, 3 floats per point
     std::vector<std::uint32_t> order_;    // original index of each sorted point
