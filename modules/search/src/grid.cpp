@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -150,7 +151,7 @@ void squared_distances(const double* __restrict x, const double* __restrict y,
 }
 
 constexpr std::int64_t kMaxRing = 2;       // rings searched before falling back to the tree
-constexpr std::uint32_t kLeafSize = 16;
+constexpr std::uint32_t kLeafCells = 4;  // cells per k-d tree leaf
 
 }  // namespace
 
@@ -517,15 +518,24 @@ void Grid::search(const pcl::PointXYZ& q,
 
 void Grid::build_tree() const {
     std::call_once(tree_once_, [this] {
-        const auto n = static_cast<std::uint32_t>(order_.size());
+        // A k-d tree over the occupied cells (a few points each), split on cell coordinates:
+        // cheaper to build than one over the points, and a cell's points are contiguous.
+        const auto n = static_cast<std::uint32_t>(cells_.size());
+        std::vector<std::int32_t> coords(3 * std::size_t{n});
         tree_perm_.resize(n);
-        for (std::uint32_t s = 0; s < n; ++s) {
-            tree_perm_[s] = s;
+        for (std::uint32_t c = 0; c < n; ++c) {
+            std::int64_t v[3];
+            unpack(cells_[c].key, v);
+            for (int a = 0; a < 3; ++a) {
+                coords[3 * std::size_t{c} + a] = static_cast<std::int32_t>(v[a]);
+            }
+            tree_perm_[c] = c;
         }
-        nodes_.reserve(4 * (n / kLeafSize + 1));
+        const auto at_axis = [&](std::uint32_t c, int axis) { return coords[3 * std::size_t{c} + axis]; };
+        nodes_.reserve(4 * (n / kLeafCells + 1));
         nodes_.push_back({0, n});
-        // Level by level: the nodes of one level own disjoint ranges of tree_perm_, so their
-        // median splits run in parallel; children are appended afterwards, in order.
+        // Level by level: the nodes of one level own disjoint ranges of tree_perm_, so they are
+        // split in parallel; children are appended afterwards, in order.
         for (std::size_t level_begin = 0; level_begin < nodes_.size();) {
             const std::size_t level_end = nodes_.size();
 #pragma omp parallel for schedule(dynamic, 1)
@@ -533,14 +543,15 @@ void Grid::build_tree() const {
                  at < static_cast<std::int64_t>(level_end); ++at) {
                 Node& node = nodes_[static_cast<std::size_t>(at)];
                 const std::uint32_t b = node.begin, e = node.end;
-                if (e - b <= kLeafSize) {
+                node.mid = e;  // a leaf unless split below
+                if (e - b <= kLeafCells) {
                     continue;
                 }
-                float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+                std::int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
                 for (std::uint32_t p = b; p < e; ++p) {
                     for (int a = 0; a < 3; ++a) {
-                        lo[a] = std::min(lo[a], xyz_[3 * tree_perm_[p] + a]);
-                        hi[a] = std::max(hi[a], xyz_[3 * tree_perm_[p] + a]);
+                        lo[a] = std::min(lo[a], at_axis(tree_perm_[p], a));
+                        hi[a] = std::max(hi[a], at_axis(tree_perm_[p], a));
                     }
                 }
                 int axis = 0;
@@ -549,24 +560,30 @@ void Grid::build_tree() const {
                         axis = a;
                     }
                 }
-                const std::uint32_t mid = b + (e - b) / 2;
-                std::nth_element(tree_perm_.begin() + b, tree_perm_.begin() + mid,
-                                 tree_perm_.begin() + e, [&](std::uint32_t u, std::uint32_t v) {
-                                     return xyz_[3 * u + axis] < xyz_[3 * v + axis];
-                                 });
+                // Distinct cells differ on some axis, so the widest one has lo < hi.
+                auto* first = tree_perm_.data() + b;
+                auto* last = tree_perm_.data() + e;
+                std::nth_element(first, first + (e - b) / 2, last, [&](std::uint32_t u, std::uint32_t v) {
+                    return at_axis(u, axis) < at_axis(v, axis);
+                });
+                std::int32_t boundary = at_axis(first[(e - b) / 2], axis);  // left: coordinate < boundary
+                if (boundary == lo[axis]) {
+                    ++boundary;
+                }
+                auto* split = std::partition(first, last, [&](std::uint32_t u) { return at_axis(u, axis) < boundary; });
+                node.mid = static_cast<std::uint32_t>(split - tree_perm_.data());
                 node.axis = static_cast<std::uint8_t>(axis);
-                node.split = xyz_[3 * tree_perm_[mid] + axis];
+                node.plane = origin_[axis] + static_cast<double>(boundary) * cell_;
             }
             for (std::size_t at = level_begin; at < level_end; ++at) {
-                const std::uint32_t b = nodes_[at].begin, e = nodes_[at].end;
-                if (e - b <= kLeafSize) {
+                const Node node = nodes_[at];
+                if (node.mid == node.end) {
                     continue;
                 }
-                const std::uint32_t mid = b + (e - b) / 2;
                 nodes_[at].left = static_cast<std::int32_t>(nodes_.size());
-                nodes_.push_back({b, mid});
+                nodes_.push_back({node.begin, node.mid});
                 nodes_[at].right = static_cast<std::int32_t>(nodes_.size());
-                nodes_.push_back({mid, e});
+                nodes_.push_back({node.mid, node.end});
             }
             level_begin = level_end;
         }
@@ -579,6 +596,9 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
     idx.clear();
     d2.clear();
     const double v[3] = {q.x, q.y, q.z};
+    // A point's cell coordinate is computed with rounding, so it may sit a hair across its
+    // cell's plane: planes are widened by `slack` to keep the bounds below the true distances.
+    const double slack = 1e-6 * cell_;
     // Depth-first, near side first; a far side is skipped only when its half-space is strictly
     // farther than the current k-th distance (so index tie-breaks stay exact).
     thread_local std::vector<std::pair<std::int32_t, double>> stack;
@@ -589,25 +609,28 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
         if (idx.size() == k && bound > d2.back()) {
             continue;
         }
-        const Node& node = nodes_[at];
+        const Node& node = nodes_[static_cast<std::size_t>(at)];
         if (node.left < 0) {
             for (std::uint32_t p = node.begin; p < node.end; ++p) {
-                const std::uint32_t s = tree_perm_[p];
-                const std::uint32_t i = order_[s];
-                if (i == self) {
-                    continue;
+                const Cell& cell = cells_[tree_perm_[p]];
+                for (std::uint32_t s = cell.begin; s < cell.end; ++s) {
+                    const std::uint32_t i = order_[s];
+                    if (i == self) {
+                        continue;
+                    }
+                    const double ex = double{xyz_[3 * s]} - v[0];
+                    const double ey = double{xyz_[3 * s + 1]} - v[1];
+                    const double ez = double{xyz_[3 * s + 2]} - v[2];
+                    insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
                 }
-                const double ex = double{xyz_[3 * s]} - v[0];
-                const double ey = double{xyz_[3 * s + 1]} - v[1];
-                const double ez = double{xyz_[3 * s + 2]} - v[2];
-                insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
             }
             continue;
         }
-        const double diff = v[node.axis] - double{node.split};
+        const double diff = v[node.axis] - node.plane;
         const std::int32_t near = diff < 0 ? node.left : node.right;
         const std::int32_t far = diff < 0 ? node.right : node.left;
-        stack.push_back({far, std::max(bound, diff * diff)});
+        const double gap = std::max(0.0, std::abs(diff) - slack);
+        stack.push_back({far, std::max(bound, gap * gap)});
         stack.push_back({near, bound});
     }
 }

@@ -111,17 +111,18 @@ private:
     void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
                   std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
 
-    // A k-d tree over the sorted points, built on first need: the ring search bounds its work at
+    // A k-d tree over the occupied cells, built on first need: the ring search bounds its work at
     // a few rings, and points far from everything else (floaters) are answered by the tree.
     struct Node {
         std::uint32_t begin, end;  // range of tree_perm_
+        std::uint32_t mid = 0;     // children [begin, mid) and [mid, end); end = a leaf
         std::int32_t left = -1, right = -1;
         std::uint8_t axis = 0;
-        float split = 0;
+        double plane = 0;  // left: points below the plane, right: at or above (up to rounding)
     };
     mutable std::once_flag tree_once_;
     mutable std::vector<Node> nodes_;
-    mutable std::vector<std::uint32_t> tree_perm_;  // positions in xyz_
+    mutable std::vector<std::uint32_t> tree_perm_;  // cell indices
 
     double cell_ = 1;
     double origin_[3] = {0, 0, 0};
