@@ -82,10 +82,8 @@ int main(int argc, char** argv) {
         if (chain.voxel) {
             chain.voxel = voxel;
         }
-        const pl::ChainResult r = pl::run_chain(io.read(), chain);
-        for (const auto& n : r.notes) {
-            io.note(n);
-        }
+        const pl::ChainResult r =
+            pl::run_chain(io.read(), chain, [&](const std::string& n) { io.note(n); });
         const auto summary = pl::summarize(r.labelled, chain.count_min_points);
         if (!cloud_out.empty()) {
             pc::cli::write_cloud_file(cloud_out, r.labelled);

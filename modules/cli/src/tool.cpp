@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <cstdlib>
 #include <charconv>
+#include <chrono>
+#include <cstdio>
 #include <csignal>
 #include <cstring>
 #include <iostream>
@@ -171,7 +173,11 @@ io::Blob Streams::read(const std::string& path) {
 
 void Streams::note(const std::string& message) const {
     if (verbose_ && !quiet_) {
-        std::cerr << tool_ << ": " << message << '\n';
+        // Elapsed time since the tool started: progress and cost of each step on large clouds.
+        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        char stamp[32];
+        std::snprintf(stamp, sizeof stamp, "[%.2f s] ", t);
+        std::cerr << tool_ << ": " << stamp << message << std::endl;
     }
 }
 
@@ -189,6 +195,7 @@ void Streams::write_bytes(const std::function<void(io::ByteSink&)>& producer) {
     io::FdSink sink(file.fd(), output_);
     producer(sink);
     file.commit();
+    note("wrote " + output_);
 }
 
 void Streams::write(const io::Blob& blob) {

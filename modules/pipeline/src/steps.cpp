@@ -101,11 +101,15 @@ Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSpli
                 " clusters"};
 }
 
-ChainResult run_chain(const io::Blob& in, const ChainParams& p) {
+ChainResult run_chain(io::Blob in, const ChainParams& p,
+                      const std::function<void(const std::string&)>& progress) {
     ChainResult out;
-    io::Blob cur = in;
+    io::Blob cur = std::move(in);
     const auto take = [&](Step s) {
         cur = std::move(s.blob);
+        if (progress) {
+            progress(s.note);
+        }
         out.notes.push_back(std::move(s.note));
     };
     if (p.color) {

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -48,6 +49,7 @@ private:
     std::string encoding_ = "binary", container_ = "auto", input_format_;
     std::uint64_t max_input_bytes_ = io::kDefaultMaxInputBytes;
     bool verbose_ = false, quiet_ = false, written_ = false;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 /// A real number for option `--option`; throws pc::InvalidArgument naming it.

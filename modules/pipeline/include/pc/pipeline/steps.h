@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -43,7 +44,10 @@ struct ChainResult {
     io::Blob labelled;
     std::vector<std::string> notes;  ///< one per step
 };
-[[nodiscard]] ChainResult run_chain(const io::Blob& in, const ChainParams& p);
+/// `in` is taken by value: pass a temporary (or std::move) and it is not copied. `progress`,
+/// when set, receives each step's note as soon as the step is done (pc_fruitcount -v).
+[[nodiscard]] ChainResult run_chain(io::Blob in, const ChainParams& p,
+                                    const std::function<void(const std::string&)>& progress = {});
 
 /// The clusters of `label` in a labelled cloud (pc_count, pc_fruitcount); an empty cloud has none
 /// and needs no label field. Clusters with fewer than `min_points` points are not counted.
