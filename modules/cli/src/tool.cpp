@@ -176,8 +176,8 @@ void Streams::note(const std::string& message) const {
         // Elapsed time since the tool started: progress and cost of each step on large clouds.
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
         char stamp[32];
-        std::snprintf(stamp, sizeof stamp, "[%.2f s] ", t);
-        std::cerr << tool_ << ": " << stamp << message << std::endl;
+        std::snprintf(stamp, sizeof stamp, " [%.2f s]", t);
+        std::cerr << tool_ << ": " << message << stamp << std::endl;
     }
 }
 
