@@ -63,19 +63,22 @@ Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, c
 }
 
 Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRule& eps) {
-    const Cloud cloud = io::xyz(in);
     std::string note;
-    if (eps.mode == EpsRule::Mode::kKnee) {
-        p.eps = segmentation::estimate_eps(cloud, p.min_points);
-        note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
-    } else if (eps.mode == EpsRule::Mode::kSpacing) {
-        const double s = search::median_spacing(cloud);
-        // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
-        p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
-        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
-               format_number(p.eps) + "; ";
-    }
-    const segmentation::DbscanResult r = segmentation::dbscan(cloud, p);
+    // The coordinates live only while clustering: freed before the output cloud is made.
+    const segmentation::DbscanResult r = [&] {
+        const Cloud cloud = io::xyz(in);
+        if (eps.mode == EpsRule::Mode::kKnee) {
+            p.eps = segmentation::estimate_eps(cloud, p.min_points);
+            note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
+        } else if (eps.mode == EpsRule::Mode::kSpacing) {
+            const double s = search::median_spacing(cloud);
+            // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
+            p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
+            note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
+                   format_number(p.eps) + "; ";
+        }
+        return segmentation::dbscan(cloud, p);
+    }();
     std::size_t noise = 0;
     for (auto l : r.labels) {
         noise += l == segmentation::kNoise;

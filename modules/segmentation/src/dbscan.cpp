@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include <pc/core/error.h>
 #include <pc/search/grid.h>
@@ -261,32 +262,43 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
         }
     });
 
-    // 4. Number clusters by decreasing size, ties by smallest original member index.
-    std::vector<std::uint32_t> size(m, 0), first(m, kNone);
+    // The forest and the per-cell tables are done with: free them before numbering.
+    std::vector<std::atomic<std::uint32_t>>().swap(forest.parent);
+    std::vector<std::uint8_t>().swap(comp);
+    std::vector<float>().swap(box);
+    std::vector<std::uint32_t>().swap(first_core);
+
+    // 4. Number clusters by decreasing size, ties by smallest original member index: components
+    //    get compact ids first, so the per-cluster tables are as small as the cluster count.
+    std::vector<std::uint32_t> id(m, kNone);
+    std::vector<std::uint32_t> size, first;
     for (std::uint32_t s = 0; s < m; ++s) {
-        if (root[s] != kNone) {
-            ++size[root[s]];
-            first[root[s]] = std::min(first[root[s]], grid.index_of(s));
+        if (root[s] == kNone) {
+            continue;
         }
-    }
-    std::vector<std::uint32_t> roots;
-    for (std::uint32_t s = 0; s < m; ++s) {
-        if (size[s] > 0) {
-            roots.push_back(s);
+        std::uint32_t& k = id[root[s]];
+        if (k == kNone) {
+            k = static_cast<std::uint32_t>(size.size());
+            size.push_back(0);
+            first.push_back(kNone);
         }
+        ++size[k];
+        first[k] = std::min(first[k], grid.index_of(s));
     }
+    std::vector<std::uint32_t> roots(size.size());
+    std::iota(roots.begin(), roots.end(), 0u);
     std::sort(roots.begin(), roots.end(), [&](std::uint32_t a, std::uint32_t b) {
         return size[a] != size[b] ? size[a] > size[b] : first[a] < first[b];
     });
-    std::vector<std::uint32_t> label_of_root(m, kNoise);
+    std::vector<std::uint32_t> label_of(size.size());
     for (std::uint32_t k = 0; k < roots.size(); ++k) {
-        label_of_root[roots[k]] = k + 1;
+        label_of[roots[k]] = k + 1;
     }
     for (std::uint32_t s = 0; s < m; ++s) {
         const std::uint32_t i = grid.index_of(s);
         r.core[i] = core[s];
         if (root[s] != kNone) {
-            r.labels[i] = label_of_root[root[s]];
+            r.labels[i] = label_of[id[root[s]]];
         }
     }
     r.cluster_count = static_cast<std::uint32_t>(roots.size());
