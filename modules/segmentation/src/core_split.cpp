@@ -293,33 +293,50 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
     if (r.spacing > 0) {
         const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
         const search::Grid grid(pts, std::max(rb, link));
-        // 1. Boundary: neighbours of the same cluster lie mostly to one side.
+        // 1. Boundary: neighbours of the same cluster lie mostly to one side. Swept cell by cell:
+        //    the neighbour cells are found once per cell, not once per point.
         std::vector<std::uint8_t> boundary(m, 0);
-#pragma omp parallel for schedule(dynamic, 4096)
-        for (std::int64_t k = 0; k < static_cast<std::int64_t>(m); ++k) {
-            const auto& p = pts[k];
-            // Offsets from p: their mean (one-sidedness) and their second moments (flatness).
-            Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-            Eigen::Matrix3d second = Eigen::Matrix3d::Zero();
-            std::size_t count = 0;
-            grid.for_each_within(p, rb, [&](std::uint32_t j, double) {
-                if (lab[j] == lab[k]) {
-                    const Eigen::Vector3d o(double{pts[j].x} - p.x, double{pts[j].y} - p.y, double{pts[j].z} - p.z);
-                    sum += o;
-                    second += o * o.transpose();
-                    ++count;
+        const double rb2 = rb * rb;
+        grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+            for (std::uint32_t sp = grid.cell_begin(c); sp < grid.cell_end(c); ++sp) {
+                const std::uint32_t k = grid.index_of(sp);
+                const float* p = grid.point(sp);
+                // Offsets from p: their mean (one-sidedness) and their second moments (flatness).
+                double sx = 0, sy = 0, sz = 0, xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+                std::size_t count = 0;
+                for (std::uint32_t nc : nb) {
+                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                        const float* q = grid.point(t);
+                        const double ox = double{q[0]} - p[0], oy = double{q[1]} - p[1], oz = double{q[2]} - p[2];
+                        if (ox * ox + oy * oy + oz * oz > rb2 || lab[grid.index_of(t)] != lab[k]) {
+                            continue;
+                        }
+                        sx += ox;
+                        sy += oy;
+                        sz += oz;
+                        xx += ox * ox;
+                        xy += ox * oy;
+                        xz += ox * oz;
+                        yy += oy * oy;
+                        yz += oy * oz;
+                        zz += oz * oz;
+                        ++count;
+                    }
                 }
-            });
-            if (count < 8) {
-                boundary[k] = 1;
-                continue;
+                if (count < 8) {
+                    boundary[k] = 1;
+                    continue;
+                }
+                const double inv = 1.0 / static_cast<double>(count);
+                const Eigen::Vector3d mean(sx * inv, sy * inv, sz * inv);
+                Eigen::Matrix3d second;
+                second << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+                const Eigen::Matrix3d cov = second * inv - mean * mean.transpose();
+                const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+                // A solid's interior: neighbours all around (centred) and in every direction (isotropic).
+                boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
-            const Eigen::Vector3d mean = sum / static_cast<double>(count);
-            const Eigen::Matrix3d cov = second / static_cast<double>(count) - mean * mean.transpose();
-            const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
-            // A solid's interior: neighbours all around (centred) and in every direction (isotropic).
-            boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
-        }
+        });
         // 2. Depth: distance to the nearest boundary point.
         Cloud edge;
         for (std::size_t k = 0; k < m; ++k) {
@@ -397,28 +414,38 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
             }
         }
         // 5. Marker watershed from the cores of clusters with two or more, deepest points first.
+        //    Clusters never exchange points, so each floods on its own, in parallel (the order
+        //    within a cluster, hence the result, is the same as one flood over all of them).
         std::vector<std::uint32_t> assigned(m, kNone);
-        using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
-        std::priority_queue<Item> heap;
-        std::uint64_t seq = 0;
+        std::vector<std::vector<std::uint32_t>> seeds(clusters);
         for (std::size_t k = 0; k < m; ++k) {
             if (cores[lab[k]] >= 2 && is_core(k)) {
                 const auto id = core_id[find(parent, static_cast<std::uint32_t>(k))];
                 if (id != kNone) {
                     assigned[k] = id;
-                    heap.emplace(depth[k], ~seq++, static_cast<std::uint32_t>(k));
+                    seeds[lab[k]].push_back(static_cast<std::uint32_t>(k));
                 }
             }
         }
-        while (!heap.empty()) {
-            const std::uint32_t k = std::get<2>(heap.top());
-            heap.pop();
-            grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
-                if (assigned[j] == kNone && lab[j] == lab[k]) {
-                    assigned[j] = assigned[k];
-                    heap.emplace(depth[j], ~seq++, j);
-                }
-            });
+#pragma omp parallel for schedule(dynamic, 1)
+        for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
+            using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
+            std::priority_queue<Item> heap;
+            std::uint64_t seq = 0;
+            for (auto k : seeds[static_cast<std::size_t>(c)]) {
+                heap.emplace(depth[k], ~seq++, k);
+            }
+            while (!heap.empty()) {
+                const std::uint32_t k = std::get<2>(heap.top());
+                heap.pop();
+                grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
+                    // The cluster test first: other clusters' entries belong to other threads.
+                    if (lab[j] == lab[k] && assigned[j] == kNone) {
+                        assigned[j] = assigned[k];
+                        heap.emplace(depth[j], ~seq++, j);
+                    }
+                });
+            }
         }
         // Points the flood could not reach (apart by more than `link`): the part of the nearest
         // assigned point of their cluster, found by repeating the flood with growing steps.

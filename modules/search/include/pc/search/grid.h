@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <mutex>
@@ -150,14 +151,16 @@ template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
     const double r2 = radius * radius;
     const std::int64_t cx = coord(q.x, 0), cy = coord(q.y, 1), cz = coord(q.z, 2);
-    for (std::int64_t dz = -1; dz <= 1; ++dz) {
+    const std::uint64_t zmask = (std::uint64_t{1} << bits_[2]) - 1;
+    const auto from = static_cast<std::uint64_t>(std::max<std::int64_t>(cz - 1, 0));
+    // Nine rows (one hash look-up each), then the cells z - 1 .. z + 1 of each row.
+    for (std::int64_t dx = -1; dx <= 1; ++dx) {
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
-            for (std::int64_t dx = -1; dx <= 1; ++dx) {
-                const Cell* c = find(cx + dx, cy + dy, cz + dz);
-                if (c == nullptr) {
-                    continue;
-                }
-                for (std::uint32_t s = c->begin; s < c->end; ++s) {
+            const auto [rb, re] = row(cx + dx, cy + dy);
+            const Cell* cell = std::partition_point(cells_.data() + rb, cells_.data() + re,
+                                                    [&](const Cell& c) { return (c.key & zmask) < from; });
+            for (; cell < cells_.data() + re && static_cast<std::int64_t>(cell->key & zmask) <= cz + 1; ++cell) {
+                for (std::uint32_t s = cell->begin; s < cell->end; ++s) {
                     const double ex = double{xyz_[3 * s]} - q.x;
                     const double ey = double{xyz_[3 * s + 1]} - q.y;
                     const double ez = double{xyz_[3 * s + 2]} - q.z;
