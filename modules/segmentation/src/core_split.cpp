@@ -379,7 +379,7 @@ CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> la
         if (!solid_depths.empty()) {
             std::vector<double> copy = solid_depths;
             // The best-kept fruit: what a whole fruit measures when many are fragments.
-            r.largest_depth = percentile(copy, 90);
+            r.largest_depth = percentile(copy, 98);
             r.fruit_radius = median(solid_depths);
         }
         const double core_depth = params.core_fraction * r.fruit_radius;

@@ -35,7 +35,7 @@ struct CoreSplitResult {
     std::uint32_t splits = 0;     ///< clusters cut into two or more parts
     double spacing = 0;           ///< s
     double fruit_radius = 0;      ///< R: the median over clusters of their greatest depth
-    double largest_depth = 0;     ///< the 90th percentile of the same (the best-kept fruit)
+    double largest_depth = 0;     ///< the 98th percentile of the same (the best-kept fruit)
     double hollow_radius = 0;     ///< hollow clusters: median radius of the single-fruit-like ones
     std::uint32_t hollow_splits = 0;  ///< hollow clusters cut into spheres
     std::uint32_t merged_fragments = 0;  ///< hollow parts joined to another on the same sphere
