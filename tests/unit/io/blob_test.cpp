@@ -1,5 +1,7 @@
 #include <cmath>
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
@@ -66,6 +68,17 @@ TEST(Blob, IsDenseFollowsEveryFloatField) {
     EXPECT_TRUE(b.cloud.is_dense);
     const double nan = std::nan("");
     std::memcpy(&b.cloud.data[2 * b.cloud.point_step + 4], &nan, 8);
+    update_is_dense(b);
+    EXPECT_FALSE(b.cloud.is_dense);
+}
+
+TEST(Blob, IsDenseSeesAnInfinityFarIntoTheCloud) {
+    // Past the first block of points the check works on; -Inf in a float32 element.
+    Blob b = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}}, 9000, 1, [](auto...) { return 0.5; });
+    update_is_dense(b);
+    EXPECT_TRUE(b.cloud.is_dense);
+    const float inf = -std::numeric_limits<float>::infinity();
+    std::memcpy(&b.cloud.data[8999 * b.cloud.point_step + 4], &inf, 4);
     update_is_dense(b);
     EXPECT_FALSE(b.cloud.is_dense);
 }
