@@ -641,7 +641,8 @@ void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const
 }
 
 void Grid::sweep_cells(
-    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f) const {
+    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
+    const std::function<bool(std::uint32_t)>& needs_neighbours) const {
     // Runs of consecutive cells per task, so that the row cursors mostly move forward.
     constexpr std::int64_t kRun = 256;
     const auto cells = static_cast<std::int64_t>(cells_.size());
@@ -653,8 +654,13 @@ void Grid::sweep_cells(
         for (std::int64_t run = 0; run < runs; ++run) {
             RowCursor cursor{*this};
             for (std::int64_t c = run * kRun; c < std::min(cells, (run + 1) * kRun); ++c) {
-                cursor.neighbours(static_cast<std::uint32_t>(c), nb);
-                f(static_cast<std::uint32_t>(c), nb);
+                const auto cell = static_cast<std::uint32_t>(c);
+                if (!needs_neighbours || needs_neighbours(cell)) {
+                    cursor.neighbours(cell, nb);
+                } else {
+                    nb.clear();
+                }
+                f(cell, nb);
             }
         }
     }

@@ -230,7 +230,7 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
                 }
             }
         }
-    });
+    }, [&](std::uint32_t c) { return comps[c] != 0; });
 
     // 3. Each core point's component; border points take their nearest core point's (ties: the
     //    smallest original index).
@@ -260,6 +260,9 @@ DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
                 root[s] = forest.find(best_t);
             }
         }
+    }, [&](std::uint32_t c) {  // only cells holding a border candidate
+        return std::find(core.begin() + grid.cell_begin(c), core.begin() + grid.cell_end(c), 0) !=
+               core.begin() + grid.cell_end(c);
     });
 
     // The forest and the per-cell tables are done with: free them before numbering.

@@ -63,8 +63,11 @@ public:
     [[nodiscard]] std::uint32_t cell_end(std::size_t c) const { return cells_[c].end; }
     /// Calls f(c, neighbours) for every cell c, in parallel over cells (OpenMP, dynamic schedule),
     /// with neighbours = neighbour_cells(c). f is called concurrently for distinct cells.
+    /// `needs_neighbours`, when given, says which cells need them: the others get an empty list
+    /// and cost no look-ups.
     void sweep_cells(
-        const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f) const;
+        const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
+        const std::function<bool(std::uint32_t)>& needs_neighbours = {}) const;
     /// The existing cells among c's 3x3x3 neighbourhood (c included), ascending.
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
     /// Original cloud index of sorted position s.
