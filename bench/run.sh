@@ -119,6 +119,11 @@ for size in "${sizes[@]}"; do
   read -r s3 m3 <<<"$(ours read "$b/pc_convert -i $cloud")"
   row "read binary PCD" "$label" "$(fmt "$s3" "$m3") (pc_convert to /dev/null, whole process)" "PCL loadPCDFile: $(fmt "$s2" "$m2")" "$(ratio "$s3" "$s2")"
 
+  # A reader fed by a pipe (read, parse, check, write to /dev/null), against cat | cat: what the
+  # machine's pipes carry with no work at either end.
+  read -r s1 m1 <<<"$(ours pipe_read "cat $cloud | $b/pc_convert")"
+  read -r s2 m2 <<<"$(ours cat_cat "cat $cloud | cat")"
+  row "PCD read from a pipe (whole program)" "$label" "$(fmt "$s1" "$m1") (cat \| pc_convert)" "$(awk -v b="$bytes" -v s="$s1" -v c="$s2" 'BEGIN { printf "%.2f GB/s; cat \\| cat: %.2f GB/s", (s > 0 ? b / s / 1e9 : 0), (c > 0 ? b / c / 1e9 : 0) }')" "-"
   read -r s1 m1 <<<"$(ours pipe "$b/pc_convert -i $cloud | $b/pc_convert | $b/pc_convert")"
   row "PCD through two pipes" "$label" "$(fmt "$s1" "$m1")" "$(awk -v b="$bytes" -v s="$s1" 'BEGIN { printf "%.2f GB/s per pipe (%d MB cloud, 3 processes)", 2 * b / s / 1e9, b / 1e6 }')" "-"
 
