@@ -349,14 +349,23 @@ void tune_allocator() {
     }
     // Larger than what is left of the heap: forces the extension, with the reservation.
     void* first = std::malloc(std::size_t{4} << 20);
+    if (first == nullptr) {
+        // No room for the reservation (ulimit -v, strict overcommit): glibc's defaults.
+        (void)mallopt(M_TOP_PAD, 128 << 10);
+        (void)mallopt(M_MMAP_MAX, 65536);
+        return;
+    }
     const auto lo = reinterpret_cast<std::uintptr_t>(first);
     const auto hi = reinterpret_cast<std::uintptr_t>(::sbrk(0));
     constexpr std::uintptr_t kPage = 4096;
     const std::uintptr_t from = (lo + kPage - 1) & ~(kPage - 1);
-    if (first != nullptr && hi > from) {
+    if (hi > from) {
         (void)::madvise(reinterpret_cast<void*>(from), hi - from, MADV_HUGEPAGE);
     }
     std::free(first);
+    // Later growth (clouds needing more than the reservation) asks for modest steps, so that a
+    // strict memory limit is met by the allocation that needs it, not by a 1 GiB pad.
+    (void)mallopt(M_TOP_PAD, 64 << 20);
 #endif
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <set>
 
@@ -485,6 +486,23 @@ void write_compressed(const Blob& blob, const std::vector<Field>& fields, ByteSi
 }
 
 }  // namespace
+
+std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix) {
+    try {
+        const Header h = parse_header(prefix);
+        if (h.data != DataKind::kBinary) {
+            return std::nullopt;
+        }
+        std::vector<std::string> notes;
+        const Layout l = validate(h, notes);
+        if (l.point_step != 0 && l.n > (std::numeric_limits<std::uint64_t>::max() - h.body_offset) / l.point_step) {
+            return std::nullopt;
+        }
+        return h.body_offset + l.n * l.point_step;
+    } catch (const Error&) {
+        return std::nullopt;
+    }
+}
 
 ReadResult parse_pcd(std::string_view bytes) {
     ReadResult r;

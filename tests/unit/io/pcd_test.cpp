@@ -1,5 +1,6 @@
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -109,6 +110,21 @@ INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
                                     : p.param == PcdEncoding::kBinary ? std::string("Binary")
                                                                       : std::string("Compressed");
                          });
+
+TEST(Pcd, BinarySizeComesFromACompleteHeaderOnly) {
+    const std::string header =
+        "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
+        "WIDTH 1000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000\nDATA binary\n";
+    EXPECT_EQ(pcd_binary_size(header), header.size() + 1000u * 16u);
+    EXPECT_EQ(pcd_binary_size(header + std::string(100, '\0')), header.size() + 1000u * 16u);
+    EXPECT_FALSE(pcd_binary_size(header.substr(0, header.size() - 8)));  // DATA line not yet in
+    std::string ascii = header;
+    ascii.replace(ascii.find("DATA binary"), 11, "DATA ascii");
+    EXPECT_FALSE(pcd_binary_size(ascii));
+    std::string lying = header;
+    lying.replace(lying.find("POINTS 1000"), 11, "POINTS 7");  // WIDTH x HEIGHT says 1000
+    EXPECT_FALSE(pcd_binary_size(lying));
+}
 
 TEST(Pcd, GapsBetweenFieldsBecomePaddingFields) {
     Blob b = test::random_xyz(2);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string_view>
 
 #include <pc/io/read.h>
@@ -11,6 +12,12 @@ enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 
 /// Parses a PCD v0.5-0.7 file held in memory (see docs/formats.md for what is accepted).
 [[nodiscard]] ReadResult parse_pcd(std::string_view bytes);
+
+/// The total size of a binary PCD whose beginning is `prefix` (header + POINTS x point size), when
+/// the prefix holds a complete, valid binary header; nullopt otherwise (any other encoding, a
+/// header not yet complete, or one that parse_pcd would refuse). Lets a pipe reader size its
+/// buffer once instead of growing it.
+[[nodiscard]] std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix);
 
 /// Writes PCD v0.7. Gaps between fields become `_` padding fields (as PCL does); a packed colour
 /// (`rgb`/`rgba` F 4) is declared U 4 with the same bits. ASCII floats use the shortest text that
