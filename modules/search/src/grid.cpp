@@ -18,17 +18,19 @@ namespace {
 constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis in a 63-bit key
 
 /// LSD radix sort of (key, index) pairs, 12 bits per pass, skipping passes where all digits agree.
-void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& idx) {
+/// Keys are 32-bit when the cell key fits (nearly always): half the bytes to move and hold.
+template <class Key>
+void radix_sort(std::vector<Key>& keys, std::vector<std::uint32_t>& idx) {
     const std::size_t n = keys.size();
-    std::vector<std::uint64_t> k2(n);
+    std::vector<Key> k2(n);
     std::vector<std::uint32_t> i2(n);
-    std::uint64_t all_or = 0, all_and = ~std::uint64_t{0};
+    Key all_or = 0, all_and = static_cast<Key>(~Key{0});
     for (auto k : keys) {
         all_or |= k;
         all_and &= k;
     }
-    const std::uint64_t varying = all_or ^ all_and;
-    for (int shift = 0; shift < 64; shift += 12) {
+    const Key varying = all_or ^ all_and;
+    for (int shift = 0; shift < static_cast<int>(8 * sizeof(Key)); shift += 12) {
         if (((varying >> shift) & 0xfff) == 0) {
             continue;
         }
@@ -263,27 +265,44 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         dims_[a] = coord(static_cast<float>(b.hi[a]), a) + 1;
         bits_[a] = bit_width(dims_[a] - 1);
     }
-    std::vector<std::uint64_t> keys(b.n);
-    order_.resize(b.n);
-    if (b.n == cloud.size()) {  // all finite (the usual case): in parallel
-        const auto n = static_cast<std::int64_t>(b.n);
+    const auto sort_points = [&](auto zero) {
+        using Key = decltype(zero);
+        std::vector<Key> keys(b.n);
+        order_.resize(b.n);
+        if (b.n == cloud.size()) {  // all finite (the usual case): in parallel
+            const auto n = static_cast<std::int64_t>(b.n);
 #pragma omp parallel for schedule(static)
-        for (std::int64_t i = 0; i < n; ++i) {
-            const auto& p = cloud[static_cast<std::size_t>(i)];
-            keys[static_cast<std::size_t>(i)] = pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2));
-            order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
-        }
-    } else {
-        std::size_t at = 0;
-        for (std::uint32_t i = 0; i < cloud.size(); ++i) {
-            const auto& p = cloud[i];
-            if (is_finite(p)) {
-                keys[at] = pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2));
-                order_[at++] = i;
+            for (std::int64_t i = 0; i < n; ++i) {
+                const auto& p = cloud[static_cast<std::size_t>(i)];
+                keys[static_cast<std::size_t>(i)] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
+            }
+        } else {
+            std::size_t at = 0;
+            for (std::uint32_t i = 0; i < cloud.size(); ++i) {
+                const auto& p = cloud[i];
+                if (is_finite(p)) {
+                    keys[at] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                    order_[at++] = i;
+                }
             }
         }
+        radix_sort(keys, order_);
+        for (std::size_t s = 0; s < order_.size(); ++s) {
+            if (s == 0 || keys[s] != keys[s - 1]) {
+                cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
+                if (s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2])) {
+                    row_begin_.push_back(static_cast<std::uint32_t>(cells_.size() - 1));
+                }
+            }
+            cells_.back().end = static_cast<std::uint32_t>(s + 1);
+        }
+    };
+    if (bits_[0] + bits_[1] + bits_[2] <= 32) {
+        sort_points(std::uint32_t{0});
+    } else {
+        sort_points(std::uint64_t{0});
     }
-    radix_sort(keys, order_);
     xyz_.resize(3 * order_.size());
     const auto m = static_cast<std::int64_t>(order_.size());
 #pragma omp parallel for schedule(static)
@@ -293,16 +312,6 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         xyz_[3 * s + 1] = p.y;
         xyz_[3 * s + 2] = p.z;
     }
-    for (std::size_t s = 0; s < order_.size(); ++s) {
-        if (s == 0 || keys[s] != keys[s - 1]) {
-            cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
-            if (s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2])) {
-                row_begin_.push_back(static_cast<std::uint32_t>(cells_.size() - 1));
-            }
-        }
-        cells_.back().end = static_cast<std::uint32_t>(s + 1);
-    }
-    std::vector<std::uint64_t>().swap(keys);
     row_begin_.push_back(static_cast<std::uint32_t>(cells_.size()));
     row_key_.resize(row_begin_.size() - 1);
     for (std::size_t r = 0; r + 1 < row_begin_.size(); ++r) {
