@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -65,19 +66,25 @@ Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, c
 Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRule& eps) {
     std::string note;
     // The coordinates live only while clustering: freed before the output cloud is made.
+    // The coordinates are freed once the grid holds its own sorted copy: DBSCAN's peak memory.
     const segmentation::DbscanResult r = [&] {
-        const Cloud cloud = io::xyz(in);
+        auto cloud = std::make_unique<Cloud>(io::xyz(in));
         if (eps.mode == EpsRule::Mode::kKnee) {
-            p.eps = segmentation::estimate_eps(cloud, p.min_points);
+            p.eps = segmentation::estimate_eps(*cloud, p.min_points);
             note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
         } else if (eps.mode == EpsRule::Mode::kSpacing) {
-            const double s = search::median_spacing(cloud);
+            const double s = search::median_spacing(*cloud);
             // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
             p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
             note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
                    format_number(p.eps) + "; ";
         }
-        return segmentation::dbscan(cloud, p);
+        p.validate();
+        search::Grid grid(*cloud, p.eps);
+        const std::size_t n = cloud->size();
+        grid.release_cloud();
+        cloud.reset();
+        return segmentation::dbscan(grid, n, p);
     }();
     std::size_t noise = 0;
     for (auto l : r.labels) {

@@ -5,6 +5,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <tuple>
 #include <cstdio>
 
@@ -449,6 +450,9 @@ void Grid::knn(std::uint32_t self,
                std::size_t k,
                std::vector<std::uint32_t>& idx,
                std::vector<double>& d2) const {
+    if (cloud_ == nullptr) {
+        throw std::logic_error("grid: knn(i) after release_cloud()");
+    }
     search(cloud_->points[self], self, k, idx, d2);
 }
 
@@ -494,7 +498,7 @@ void Grid::search(const pcl::PointXYZ& q,
             insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
         }
     };
-    const bool indexed = self < cloud_->size() && is_finite((*cloud_)[self]);
+    const bool indexed = cloud_ != nullptr && self < cloud_->size() && is_finite((*cloud_)[self]);
     const std::size_t others = order_.size() - (indexed ? 1 : 0);
     for (std::int64_t r = 0;; ++r) {
         for (std::int64_t dz = -r; dz <= r; ++dz) {
@@ -854,7 +858,8 @@ void Grid::all_knn(std::size_t k,
 #pragma omp for schedule(dynamic, 256)
         for (std::int64_t at = 0; at < static_cast<std::int64_t>(far_points.size()); ++at) {
             const std::uint32_t s = far_points[static_cast<std::size_t>(at)];
-            tree_knn((*cloud_)[order_[s]], order_[s], k, idx, d2);
+            const float* p = point(s);
+            tree_knn(pcl::PointXYZ(p[0], p[1], p[2]), order_[s], k, idx, d2);
             f(order_[s], idx, d2);
         }
     }

@@ -145,11 +145,19 @@ void DbscanParams::validate() const {
 
 DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
     params.validate();
-    const std::size_t n = cloud.size();
+    const search::Grid grid(cloud, params.eps);
+    return dbscan(grid, cloud.size(), params);
+}
+
+DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams& params) {
+    params.validate();
+    if (!(grid.cell() >= params.eps)) {
+        throw InvalidArgument("dbscan: the grid's cells (" + format_number(grid.cell()) +
+                              ") must be at least eps (" + format_number(params.eps) + ")");
+    }
     DbscanResult r;
     r.labels.assign(n, kNoise);
     r.core.assign(n, 0);
-    const search::Grid grid(cloud, params.eps);
     const double eps2 = params.eps * params.eps;
     const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
     std::vector<std::uint8_t> core(m, 0);

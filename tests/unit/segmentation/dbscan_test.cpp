@@ -1,10 +1,13 @@
 #include <algorithm>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <numeric>
 
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
+#include <pc/search/grid.h>
 #include <pc/segmentation/dbscan.h>
 
 #include "support/clouds.h"
@@ -101,6 +104,24 @@ TEST(Dbscan, MatchesBruteForceOnDenseBlobsNearEachOther) {
         const DbscanResult r = dbscan(c, {.eps = eps, .min_points = min_points});
         expect_same_partition(r, brute_dbscan(c, eps, min_points));
     }
+}
+
+TEST(Dbscan, OverAGridWhoseCloudWasFreedGivesTheSameResult) {
+    const DbscanParams p{.eps = 0.05, .min_points = 4};
+    auto cloud = std::make_unique<Cloud>(test::concat(test::uniform(800, 1.0f, 41), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 42)));
+    const DbscanResult want = dbscan(*cloud, p);
+    search::Grid grid(*cloud, p.eps);
+    const std::size_t n = cloud->size();
+    grid.release_cloud();
+    cloud.reset();
+    const DbscanResult got = dbscan(grid, n, p);
+    EXPECT_EQ(got.labels, want.labels);
+    EXPECT_EQ(got.core, want.core);
+    EXPECT_EQ(got.cluster_count, want.cluster_count);
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    EXPECT_THROW(grid.knn(0, 3, idx, d2), std::logic_error);
+    EXPECT_THROW((void)dbscan(grid, n, {.eps = 0.2, .min_points = 4}), InvalidArgument);  // cells < eps
 }
 
 TEST(Dbscan, PointsAtExactlyEpsAreNeighbours) {

@@ -83,6 +83,9 @@ public:
     }
 
     [[nodiscard]] double cell() const { return cell_; }
+    /// Forgets the cloud, which the caller may then free: sweeps, radius queries, knn_point()
+    /// and all_knn() work on the grid's own copy of the points; knn(i) needs the cloud (throws).
+    void release_cloud() { cloud_ = nullptr; }
     [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
 
 private:

@@ -5,6 +5,10 @@
 
 #include <pc/core/cloud.h>
 
+namespace pc::search {
+class Grid;
+}  // namespace pc::search
+
 namespace pc::segmentation {
 
 /// Label given to points that belong to no cluster.
@@ -30,6 +34,10 @@ struct DbscanResult {
 /// visiting order. Clusters are numbered 1..N by decreasing size, ties by smallest point index.
 /// Non-finite points are noise and nobody's neighbour. O(n · neighbours), counting in parallel.
 [[nodiscard]] DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params);
+
+/// The same over a grid already built on the cloud (n points) with cells of at least eps, so
+/// that a caller can free the cloud first (the grid keeps its own sorted copy of the points).
+[[nodiscard]] DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams& params);
 
 /// eps from the knee of the sorted distances to the (min_points − 1)-th nearest other point (the
 /// core-distance curve), found as the point farthest below the chord (Kneedle), with the curve
