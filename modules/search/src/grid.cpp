@@ -7,7 +7,6 @@
 #include <limits>
 #include <stdexcept>
 #include <tuple>
-#include <cstdio>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -140,17 +139,6 @@ inline void insert_candidate(std::uint32_t i, double dd, std::size_t k,
     }
     idx[at] = i;
     d2[at] = dd;
-}
-
-/// out[j] = squared distance from (qx, qy, qz) to (x[j], y[j], z[j]); a loop the compiler
-/// vectorises (the columns do not alias).
-void squared_distances(const double* __restrict x, const double* __restrict y,
-                       const double* __restrict z, std::size_t m, double qx, double qy, double qz,
-                       double* __restrict out) {
-    for (std::size_t j = 0; j < m; ++j) {
-        const double ex = x[j] - qx, ey = y[j] - qy, ez = z[j] - qz;
-        out[j] = ex * ex + ey * ey + ez * ez;
-    }
 }
 
 constexpr std::int64_t kMaxRing = 2;       // rings searched before falling back to the tree
@@ -679,27 +667,9 @@ void Grid::sweep_cells(
     }
 }
 
-/// Candidate points as columns (so that the distance loop vectorises) and their sorted positions.
-struct detail::Columns {
-    std::vector<double> x, y, z, d2;
-    std::vector<std::uint32_t> pos;
-    void clear() {
-        x.clear();
-        y.clear();
-        z.clear();
-        pos.clear();
-    }
-    void push(const float* p, std::uint32_t t) {
-        x.push_back(p[0]);
-        y.push_back(p[1]);
-        z.push_back(p[2]);
-        pos.push_back(t);
-    }
-};
-
 namespace {
 
-/// A neighbour cell of the 3x3x3 block: its index, offset from the centre, |offset|_1.
+/// A cell near a query's cell: its index, its offset (-2..2 per axis), |offset|_1.
 struct Segment {
     std::uint32_t cell;
     std::int8_t d[3];
@@ -710,62 +680,37 @@ struct Segment {
 struct KnnScratch {
     std::vector<std::uint32_t> idx, far;
     std::vector<double> d2;
-    std::vector<Segment> segments;
-    detail::Columns ring2;
+    std::vector<Segment> block, ring2;  // the 3x3x3 block; the cells at Chebyshev distance 2
 };
 
 }  // namespace
 
-void Grid::gather_ring2(const std::int64_t xyz[3], detail::Columns& out) const {
-    out.clear();
+std::pair<const Grid::Cell*, const Grid::Cell*> Grid::row_span(std::int64_t x, std::int64_t y, std::int64_t z_lo,
+                                                               std::int64_t z_hi) const {
+    const auto [rb, re] = row(x, y);
     const std::uint64_t zmask = (std::uint64_t{1} << bits_[2]) - 1;
-    for (std::int64_t dx = -2; dx <= 2; ++dx) {
-        for (std::int64_t dy = -2; dy <= 2; ++dy) {
-            const auto [rb, re] = row(xyz[0] + dx, xyz[1] + dy);
-            const bool inner_row = std::abs(dx) <= 1 && std::abs(dy) <= 1;
-            // First cell of the row with z >= z - 2.
-            const std::uint64_t from = static_cast<std::uint64_t>(std::max<std::int64_t>(xyz[2] - 2, 0));
-            const Cell* first = std::partition_point(
-                cells_.data() + rb, cells_.data() + re,
-                [&](const Cell& cell) { return (cell.key & zmask) < from; });
-            for (const Cell* cell = first; cell < cells_.data() + re; ++cell) {
-                const auto cz = static_cast<std::int64_t>(cell->key & zmask);
-                if (cz > xyz[2] + 2) {
-                    break;
-                }
-                if (inner_row && std::abs(cz - xyz[2]) <= 1) {
-                    continue;  // in the 3x3x3 block, already seen
-                }
-                for (std::uint32_t t = cell->begin; t < cell->end; ++t) {
-                    out.push(point(t), t);
-                }
-            }
-        }
-    }
+    const auto z_of = [&](const Cell& c) { return static_cast<std::int64_t>(c.key & zmask); };
+    const Cell* first = std::partition_point(cells_.data() + rb, cells_.data() + re,
+                                             [&](const Cell& c) { return z_of(c) < z_lo; });
+    const Cell* last = std::partition_point(first, cells_.data() + re,
+                                            [&](const Cell& c) { return z_of(c) <= z_hi; });
+    return {first, last};
 }
 
 void Grid::all_knn(std::size_t k,
                    const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
                                             const std::vector<double>&)>& f) const {
     const std::size_t others = order_.empty() ? 0 : order_.size() - 1;
+    // A point's cell is found with rounding, so a point may sit a hair across its cell's face:
+    // face distances are reduced by `slack`, keeping every bound below the true distance.
+    const double slack = 1e-6 * cell_;
     std::vector<std::uint32_t> far_points;  // left for the k-d tree
     std::mutex far_mutex;
-    // Offers the candidates of `cols` (other than sorted position s) to the k-list.
-    const auto offer = [&](KnnScratch& w, detail::Columns& cols, std::uint32_t s, const double q[3]) {
-        const std::size_t m = cols.pos.size();
-        cols.d2.resize(m);
-        squared_distances(cols.x.data(), cols.y.data(), cols.z.data(), m, q[0], q[1], q[2], cols.d2.data());
-        const double* d = cols.d2.data();
-        const std::uint32_t* pos = cols.pos.data();
-        double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
-        for (std::size_t j = 0; j < m; ++j) {
-            if (d[j] <= worst && pos[j] != s) {
-                insert_candidate(order_[pos[j]], d[j], k, w.idx, w.d2);
-                if (w.idx.size() == k) {
-                    worst = w.d2.back();
-                }
-            }
-        }
+    const auto segment = [](std::uint32_t cell, const std::int64_t at[3], const std::int64_t centre[3]) {
+        Segment seg{cell, {static_cast<std::int8_t>(at[0] - centre[0]), static_cast<std::int8_t>(at[1] - centre[1]),
+                           static_cast<std::int8_t>(at[2] - centre[2])}, 0};
+        seg.rank = static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
+        return seg;
     };
     sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         thread_local KnnScratch scratch;
@@ -776,65 +721,76 @@ void Grid::all_knn(std::size_t k,
         const double lo[3] = {origin_[0] + static_cast<double>(xyz[0]) * cell_,
                               origin_[1] + static_cast<double>(xyz[1]) * cell_,
                               origin_[2] + static_cast<double>(xyz[2]) * cell_};
-        // The 3x3x3 block's cells, nearest first (own cell, faces, edges, corners), each with
-        // its offset so that a point can skip cells farther than its current k-th distance.
-        w.segments.clear();
+        // The 3x3x3 block's cells, nearest first (own cell, faces, edges, corners), so that a
+        // point can skip cells farther than its current k-th distance.
+        w.block.clear();
         for (std::uint32_t nc : nb) {
-            std::int64_t n[3];
-            unpack(cells_[nc].key, n);
-            Segment seg{nc, {static_cast<std::int8_t>(n[0] - xyz[0]), static_cast<std::int8_t>(n[1] - xyz[1]),
-                             static_cast<std::int8_t>(n[2] - xyz[2])}, 0};
-            seg.rank = static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
-            w.segments.push_back(seg);
+            std::int64_t at[3];
+            unpack(cells_[nc].key, at);
+            w.block.push_back(segment(nc, at, xyz));
         }
-        std::stable_sort(w.segments.begin(), w.segments.end(),
+        std::stable_sort(w.block.begin(), w.block.end(),
                          [](const Segment& a, const Segment& b) { return a.rank < b.rank; });
         bool ring2_ready = false;
         for (std::uint32_t s = cells_[c].begin; s < cells_[c].end; ++s) {
             w.idx.clear();
             w.d2.clear();
-            const double q[3] = {xyz_[3 * s], xyz_[3 * s + 1], xyz_[3 * s + 2]};
-            // Squared gaps from q to the faces of its cell, below (0) and above (1), per axis.
-            double gap[3][3];
+            // gap[a][d + 2]: squared distance from the point to the cells at offset d along axis a.
+            double gap[3][5];
+            double margin = cell_;  // to the nearest face of its own cell
             for (int a = 0; a < 3; ++a) {
-                const double below = q[a] - lo[a], above = lo[a] + cell_ - q[a];
-                gap[a][0] = below * below;
-                gap[a][1] = 0;
-                gap[a][2] = above * above;
+                const double below = std::max(0.0, double{xyz_[3 * s + a]} - lo[a] - slack);
+                const double above = std::max(0.0, lo[a] + cell_ - xyz_[3 * s + a] - slack);
+                gap[a][0] = (below + cell_) * (below + cell_);
+                gap[a][1] = below * below;
+                gap[a][2] = 0;
+                gap[a][3] = above * above;
+                gap[a][4] = (above + cell_) * (above + cell_);
+                margin = std::min({margin, below, above});
             }
-            double worst = std::numeric_limits<double>::infinity();
-            for (const Segment& seg : w.segments) {
-                const double g = gap[0][seg.d[0] + 1] + gap[1][seg.d[1] + 1] + gap[2][seg.d[2] + 1];
-                if (g > worst) {
-                    continue;  // every point of that cell is farther than the k-th
-                }
-                for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end; ++t) {
-                    const double dd = dist2(s, t);
-                    if (dd <= worst && t != s) {
-                        insert_candidate(order_[t], dd, k, w.idx, w.d2);
-                        if (w.idx.size() == k) {
-                            worst = w.d2.back();
+            const auto scan = [&](const std::vector<Segment>& cells) {
+                double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
+                for (const Segment& seg : cells) {
+                    if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] > worst) {
+                        continue;  // every point of that cell is farther than the k-th
+                    }
+                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end; ++t) {
+                        const double dd = dist2(s, t);
+                        if (dd <= worst && t != s) {
+                            insert_candidate(order_[t], dd, k, w.idx, w.d2);
+                            if (w.idx.size() == k) {
+                                worst = w.d2.back();
+                            }
                         }
                     }
                 }
-            }
+            };
             // The 3x3x3 block covers every point closer than one cell plus the distance to the
             // nearest face of the point's own cell; the 5x5x5 block one cell more.
-            double margin = cell_;
-            for (int a = 0; a < 3; ++a) {
-                margin = std::min({margin, q[a] - lo[a], lo[a] + cell_ - q[a]});
-            }
-            margin = std::max(margin, 0.0);
             const auto done = [&](double reach) {
                 return (w.idx.size() == k && w.d2.back() < reach * reach) ||
                        (w.idx.size() == others && others < k);
             };
+            scan(w.block);
             if (!done(cell_ + margin)) {
                 if (!ring2_ready) {  // gathered once per cell, for its points that need it
-                    gather_ring2(xyz, w.ring2);
+                    w.ring2.clear();
+                    for (std::int64_t dx = -2; dx <= 2; ++dx) {
+                        for (std::int64_t dy = -2; dy <= 2; ++dy) {
+                            const bool inner_row = std::abs(dx) <= 1 && std::abs(dy) <= 1;
+                            const auto [first, last] = row_span(xyz[0] + dx, xyz[1] + dy, xyz[2] - 2, xyz[2] + 2);
+                            for (const Cell* cell = first; cell < last; ++cell) {
+                                std::int64_t at[3];
+                                unpack(cell->key, at);
+                                if (!inner_row || std::abs(at[2] - xyz[2]) == 2) {  // not in the block
+                                    w.ring2.push_back(segment(static_cast<std::uint32_t>(cell - cells_.data()), at, xyz));
+                                }
+                            }
+                        }
+                    }
                     ring2_ready = true;
                 }
-                offer(w, w.ring2, s, q);
+                scan(w.ring2);
                 if (!done(2 * cell_ + margin)) {
                     w.far.push_back(s);  // sparse: the tree bounds the work
                     continue;

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <mutex>
@@ -10,10 +9,6 @@
 #include <pc/core/cloud.h>
 
 namespace pc::search {
-
-namespace detail {
-struct Columns;  // candidate points as columns (grid.cpp)
-}  // namespace detail
 
 /// A uniform grid over the finite points of a cloud, for exact radius and k-nearest-neighbour
 /// queries. Points are stored sorted by cell, so a cell's points are contiguous in memory.
@@ -110,9 +105,9 @@ private:
     /// per neighbouring row when the row changes, then cursors that only move forward.
     struct RowCursor;
     void build_tree() const;
-    /// Points of the cells at Chebyshev distance 2 from cell xyz (the 5x5x5 block minus the 3x3x3
-    /// block), as columns and sorted positions.
-    void gather_ring2(const std::int64_t xyz[3], detail::Columns& out) const;
+    /// The cells of row (x, y) with z_lo <= z <= z_hi, as [first, last).
+    [[nodiscard]] std::pair<const Cell*, const Cell*> row_span(std::int64_t x, std::int64_t y, std::int64_t z_lo,
+                                                               std::int64_t z_hi) const;
     void search(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
                 std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
     void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
@@ -157,15 +152,11 @@ template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
     const double r2 = radius * radius;
     const std::int64_t cx = coord(q.x, 0), cy = coord(q.y, 1), cz = coord(q.z, 2);
-    const std::uint64_t zmask = (std::uint64_t{1} << bits_[2]) - 1;
-    const auto from = static_cast<std::uint64_t>(std::max<std::int64_t>(cz - 1, 0));
     // Nine rows (one hash look-up each), then the cells z - 1 .. z + 1 of each row.
     for (std::int64_t dx = -1; dx <= 1; ++dx) {
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
-            const auto [rb, re] = row(cx + dx, cy + dy);
-            const Cell* cell = std::partition_point(cells_.data() + rb, cells_.data() + re,
-                                                    [&](const Cell& c) { return (c.key & zmask) < from; });
-            for (; cell < cells_.data() + re && static_cast<std::int64_t>(cell->key & zmask) <= cz + 1; ++cell) {
+            const auto [first, last] = row_span(cx + dx, cy + dy, cz - 1, cz + 1);
+            for (const Cell* cell = first; cell < last; ++cell) {
                 for (std::uint32_t s = cell->begin; s < cell->end; ++s) {
                     const double ex = double{xyz_[3 * s]} - q.x;
                     const double ey = double{xyz_[3 * s + 1]} - q.y;
