@@ -65,7 +65,6 @@ Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, c
 
 Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRule& eps) {
     std::string note;
-    // The coordinates live only while clustering: freed before the output cloud is made.
     // The coordinates are freed once the grid holds its own sorted copy: DBSCAN's peak memory.
     const segmentation::DbscanResult r = [&] {
         auto cloud = std::make_unique<Cloud>(io::xyz(in));

@@ -67,16 +67,12 @@ double box_gap2(const float* a, const float* b) {
     return g;
 }
 
-/// Squared distance from sorted point s to a box (0 inside). Slightly below the true distance
-/// is harmless (only used to skip work), so float boxes are fine.
+/// Squared distance from sorted point s to a box (0 inside): the gap between the box and the
+/// point seen as a box of its own. Float boxes are exact: they hold the points' own coordinates.
 double point_gap2(const search::Grid& grid, std::uint32_t s, const float* b) {
     const float* p = grid.point(s);
-    double g = 0;
-    for (int k = 0; k < 3; ++k) {
-        const double d = std::max({0.0, double{b[k]} - p[k], double{p[k]} - b[k + 3]});
-        g += d * d;
-    }
-    return g;
+    const float point_box[6] = {p[0], p[1], p[2], p[0], p[1], p[2]};
+    return box_gap2(point_box, b);
 }
 
 /// Joins the core points of one cell [b, e) that are within eps (sequential union-find on the
