@@ -23,24 +23,26 @@ void KnnOutlierParams::validate() const {
     }
 }
 
-KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params) {
+KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params) {
     params.validate();
-    const std::size_t n = cloud.size();
+    const std::size_t n = points.size;
     KnnOutlierResult r;
     r.mean_distance.assign(n, std::numeric_limits<double>::infinity());
     r.outlier.assign(n, 1);
-    const search::Grid grid(cloud, search::Grid::suggest_cell(cloud));
-    grid.all_knn(params.k, [&](std::uint32_t i, const std::vector<std::uint32_t>&,
-                               const std::vector<double>& d2) {
-        if (d2.empty()) {
-            return;
-        }
-        double sum = 0;
-        for (double v : d2) {
-            sum += std::sqrt(v);
-        }
-        r.mean_distance[i] = sum / static_cast<double>(d2.size());
-    });
+    {  // the grid is freed before the scores are copied for the percentile: peak memory
+        const search::Grid grid(points, search::Grid::suggest_cell(points));
+        grid.all_knn(params.k, [&](std::uint32_t i, const std::vector<std::uint32_t>&,
+                                   const std::vector<double>& d2) {
+            if (d2.empty()) {
+                return;
+            }
+            double sum = 0;
+            for (double v : d2) {
+                sum += std::sqrt(v);
+            }
+            r.mean_distance[i] = sum / static_cast<double>(d2.size());
+        });
+    }
     std::vector<double> finite;
     finite.reserve(n);
     for (double v : r.mean_distance) {

@@ -107,68 +107,64 @@ Blob empty_like(const Blob& blob) {
     return out;
 }
 
-Blob select(const Blob& blob, std::span<const std::uint32_t> indices) {
-    Blob out = empty_like(blob);
-    const std::size_t step = blob.cloud.point_step;
-    const std::size_t n = blob.size();
-    out.cloud.data.resize(indices.size() * step);
-    std::uint8_t* dst = out.cloud.data.data();
-    const std::uint8_t* src = blob.cloud.data.data();
-    for (const std::uint32_t i : indices) {
-        if (i >= n) {
-            throw Error("select: index must be < " + std::to_string(n) + ", got " +
-                        std::to_string(i));
-        }
-        std::memcpy(dst, src + std::size_t{i} * step, step);
-        dst += step;
-    }
-    out.cloud.width = static_cast<std::uint32_t>(indices.size());
-    out.cloud.row_step = static_cast<std::uint32_t>(indices.size() * step);
-    out.cloud.is_dense = blob.cloud.is_dense;
-    return out;
+void reserve_points(Blob& blob, std::size_t points) {
+    blob.cloud.data.reserve(points * (std::size_t{blob.cloud.point_step} + 4));
 }
 
-Blob with_field(const Blob& blob, const std::string& name, std::span<const std::uint32_t> values) {
+void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
+    const std::size_t step = blob.cloud.point_step;
+    const std::size_t n = blob.size();
+    std::uint8_t* data = blob.cloud.data.data();
+    for (std::size_t j = 0; j < indices.size(); ++j) {
+        const std::uint32_t i = indices[j];
+        if (i >= n || (j > 0 && i <= indices[j - 1])) {
+            throw Error("keep_points: indices must ascend and be < " + std::to_string(n) + ", got " +
+                        std::to_string(i) + " at position " + std::to_string(j));
+        }
+        if (i != j) {  // i > j: the row moves towards the front over rows already kept
+            std::memmove(data + j * step, data + std::size_t{i} * step, step);
+        }
+    }
+    blob.cloud.data.resize(indices.size() * step);
+    blob.cloud.width = static_cast<std::uint32_t>(indices.size());
+    blob.cloud.height = 1;
+    blob.cloud.row_step = static_cast<std::uint32_t>(indices.size() * step);
+}
+
+void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_t> values) {
     const std::size_t n = blob.size();
     if (values.size() != n) {
-        throw Error("with_field: values must be one per point (" + std::to_string(n) + "), got " +
+        throw Error("set_field: values must be one per point (" + std::to_string(n) + "), got " +
                     std::to_string(values.size()));
     }
+    auto& cloud = blob.cloud;
     const Field* existing = find_field(blob, name);
     if (existing != nullptr && existing->datatype == Field::UINT32 && existing->count == 1) {
-        Blob out = blob;  // same layout: overwrite in place
+        const std::size_t offset = existing->offset;
         for (std::size_t i = 0; i < n; ++i) {
-            std::memcpy(&out.cloud.data[i * blob.cloud.point_step + existing->offset], &values[i], 4);
+            std::memcpy(&cloud.data[i * cloud.point_step + offset], &values[i], 4);
         }
-        return out;
+        return;
     }
     // Append a U 4 field at the end of each point (after dropping an old field of that name).
-    Blob out = empty_like(blob);
-    out.cloud.fields.clear();
-    for (const auto& f : blob.cloud.fields) {
-        if (f.name != name) {
-            out.cloud.fields.push_back(f);
-        }
-    }
-    const std::size_t old_step = blob.cloud.point_step;
+    std::erase_if(cloud.fields, [&](const Field& f) { return f.name == name; });
+    const std::size_t old_step = cloud.point_step;
     const std::size_t new_step = old_step + 4;
     Field f;
     f.name = name;
     f.offset = static_cast<std::uint32_t>(old_step);
     f.datatype = Field::UINT32;
     f.count = 1;
-    out.cloud.fields.push_back(f);
-    out.cloud.point_step = static_cast<std::uint32_t>(new_step);
-    out.cloud.width = blob.cloud.width;
-    out.cloud.height = blob.cloud.height;
-    out.cloud.row_step = static_cast<std::uint32_t>(new_step * blob.cloud.width);
-    out.cloud.is_dense = blob.cloud.is_dense;
-    out.cloud.data.resize(n * new_step);
-    for (std::size_t i = 0; i < n; ++i) {
-        std::memcpy(&out.cloud.data[i * new_step], &blob.cloud.data[i * old_step], old_step);
-        std::memcpy(&out.cloud.data[i * new_step + old_step], &values[i], 4);
+    cloud.fields.push_back(f);
+    cloud.data.resize(n * new_step);
+    // Back to front: each row moves to a higher offset, past every row not yet moved.
+    std::uint8_t* data = cloud.data.data();
+    for (std::size_t i = n; i-- > 0;) {
+        std::memmove(data + i * new_step, data + i * old_step, old_step);
+        std::memcpy(data + i * new_step + old_step, &values[i], 4);
     }
-    return out;
+    cloud.point_step = static_cast<std::uint32_t>(new_step);
+    cloud.row_step = static_cast<std::uint32_t>(new_step * cloud.width);
 }
 
 void update_is_dense(Blob& blob) {

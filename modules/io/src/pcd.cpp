@@ -254,6 +254,7 @@ void read_ascii(std::string_view bytes, const Header& h, const Layout& l, Blob& 
                       std::to_string(available) + " B present");
     }
     auto& data = blob.cloud.data;
+    reserve_points(blob, l.n);
     data.assign(l.n * l.point_step, 0);
     detail::LineCursor cur{bytes, h.body_offset, h.data_line};
     std::uint64_t row = 0;
@@ -316,6 +317,7 @@ void read_binary(std::string_view bytes,
                       " B, " + std::to_string(available) + " B present");
     }
     const auto* src = reinterpret_cast<const std::uint8_t*>(bytes.data() + h.body_offset);
+    reserve_points(blob, l.n);
     blob.cloud.data.assign(src, src + need);
     if (available > need) {
         notes.push_back(std::to_string(available - need) + " trailing bytes after the binary body");
@@ -351,6 +353,7 @@ void read_compressed(std::string_view bytes, const Header& h, const Layout& l, B
                    soa);
     // Structure of arrays (all x, then all y, ...) back to one record per point; `_` stays zero.
     auto& data = blob.cloud.data;
+    reserve_points(blob, l.n);
     data.assign(l.n * l.point_step, 0);
     std::size_t block = 0;
     for (const Field& f : l.fields) {

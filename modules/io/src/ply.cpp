@@ -373,6 +373,7 @@ ReadResult parse_ply(std::string_view bytes) {
     blob.cloud.width = static_cast<std::uint32_t>(n);
     blob.cloud.height = 1;
     blob.cloud.row_step = static_cast<std::uint32_t>(n * v.point_step);
+    reserve_points(blob, n);
     blob.cloud.data.assign(n * v.point_step, 0);
     std::uint8_t* out = blob.cloud.data.data();
 

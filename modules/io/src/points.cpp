@@ -62,6 +62,28 @@ Cloud xyz(const Blob& blob) {
     return cloud;
 }
 
+XyzPoints::XyzPoints(const Blob& blob) {
+    const Field* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
+    const bool floats = axes[0] && axes[1] && axes[2] && axes[0]->datatype == Field::FLOAT32 &&
+                        axes[1]->datatype == Field::FLOAT32 && axes[2]->datatype == Field::FLOAT32;
+    if (!floats) {
+        copy_ = xyz(blob);
+        view_ = XyzView(copy_);
+        return;
+    }
+    view_.base = blob.cloud.data.data();
+    view_.stride = blob.cloud.point_step;
+    view_.size = blob.size();
+    for (int a = 0; a < 3; ++a) {
+        view_.offset[a] = axes[a]->offset;
+    }
+}
+
+void XyzPoints::release() {
+    view_ = XyzView();
+    Cloud().swap(copy_);
+}
+
 std::vector<Rgb> colours(const Blob& blob) {
     const std::size_t n = blob.size();
     const std::size_t step = blob.cloud.point_step;

@@ -103,6 +103,7 @@ ReadResult parse_text(std::string_view bytes) {
     blob.cloud.width = static_cast<std::uint32_t>(n);
     blob.cloud.height = 1;
     blob.cloud.row_step = static_cast<std::uint32_t>(n * step);
+    reserve_points(blob, n);
     blob.cloud.data.assign(n * step, 0);
     for (std::size_t i = 0; i < n; ++i) {
         const double* row = values.data() + i * columns;

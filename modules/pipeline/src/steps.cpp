@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <limits>
-#include <memory>
 
 #include <nlohmann/json.hpp>
 
@@ -22,27 +21,31 @@ std::string kept_note(const char* step, std::size_t kept, std::size_t total) {
 
 }  // namespace
 
-Step apply_color_filter(const io::Blob& in, const filters::ColorFilterParams& p) {
+Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
     p.validate();
     // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
     const auto kept = in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
-    return {io::select(in, kept), kept_note("color_filter", kept.size(), in.size())};
+    std::string note = kept_note("color_filter", kept.size(), in.size());
+    io::keep_points(in, kept);
+    return {std::move(in), std::move(note)};
 }
 
-Step apply_crop(const io::Blob& in, const filters::CropParams& p) {
+Step apply_crop(io::Blob in, const filters::CropParams& p) {
     const auto kept = filters::crop(io::xyz(in), p).kept;
-    return {io::select(in, kept), kept_note("crop", kept.size(), in.size())};
+    std::string note = kept_note("crop", kept.size(), in.size());
+    io::keep_points(in, kept);
+    return {std::move(in), std::move(note)};
 }
 
-Step apply_voxel(const io::Blob& in, const filters::VoxelParams& p) {
+Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
     const filters::VoxelResult v = filters::voxel_downsample(io::xyz(in), p);
     return {io::aggregate(in, v.voxel, v.count),
             "voxel: " + std::to_string(in.size()) + " points into " + std::to_string(v.count) +
                 " voxels of " + format_number(p.leaf)};
 }
 
-Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
-    const filters::KnnOutlierResult r = filters::knn_outlier(io::xyz(in), p);
+Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
+    const filters::KnnOutlierResult r = filters::knn_outlier(io::XyzPoints(in).view(), p);
     std::size_t outliers = 0;
     for (auto f : r.outlier) {
         outliers += f;
@@ -52,38 +55,41 @@ Step apply_knn_outlier(const io::Blob& in, const filters::KnnOutlierParams& p, c
                              " points are outliers";
     if (!o.mark_field.empty()) {
         const std::vector<std::uint32_t> mark(r.outlier.begin(), r.outlier.end());
-        return {io::with_field(in, o.mark_field, mark), note};
+        io::set_field(in, o.mark_field, mark);
+        return {std::move(in), note};
     }
     Indices kept;
+    kept.reserve(o.invert ? outliers : r.outlier.size() - outliers);
     for (std::uint32_t i = 0; i < r.outlier.size(); ++i) {
         if ((r.outlier[i] != 0) == o.invert) {
             kept.push_back(i);
         }
     }
-    return {io::select(in, kept), note};
+    io::keep_points(in, kept);
+    return {std::move(in), note};
 }
 
-Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRule& eps) {
+Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps) {
     std::string note;
-    // The coordinates are freed once the grid holds its own sorted copy: DBSCAN's peak memory.
+    // The grid reads x y z from the blob where they are and keeps its own sorted copy; a
+    // converted copy (F 8 coordinates) is freed before clustering: DBSCAN's peak memory.
     const segmentation::DbscanResult r = [&] {
-        auto cloud = std::make_unique<Cloud>(io::xyz(in));
+        io::XyzPoints points(in);
         if (eps.mode == EpsRule::Mode::kKnee) {
-            p.eps = segmentation::estimate_eps(*cloud, p.min_points);
+            p.eps = segmentation::estimate_eps(points.view(), p.min_points);
             note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
         } else if (eps.mode == EpsRule::Mode::kSpacing) {
-            const double s = search::median_spacing(*cloud);
+            const double s = search::median_spacing(points.view());
             // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
             p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
             note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
                    format_number(p.eps) + "; ";
         }
         p.validate();
-        search::Grid grid(*cloud, p.eps);
-        const std::size_t n = cloud->size();
+        search::Grid grid(points.view(), p.eps);
         grid.release_cloud();
-        cloud.reset();
-        return segmentation::dbscan(grid, n, p);
+        points.release();
+        return segmentation::dbscan(grid, in.size(), p);
     }();
     std::size_t noise = 0;
     for (auto l : r.labels) {
@@ -92,10 +98,11 @@ Step apply_dbscan(const io::Blob& in, segmentation::DbscanParams p, const EpsRul
     note += "dbscan: " + std::to_string(r.cluster_count) + " clusters, " + std::to_string(noise) +
             " noise points (eps " + format_number(p.eps) + ", min_points " +
             std::to_string(p.min_points) + ")";
-    return {io::with_field(in, "label", r.labels), note};
+    io::set_field(in, "label", r.labels);
+    return {std::move(in), note};
 }
 
-Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSplitParams& p) {
+Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
     const auto labels = io::labels(in, "label");
     const segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::xyz(in), labels, p);
@@ -105,7 +112,8 @@ Step apply_recursive_split(const io::Blob& in, const segmentation::RecursiveSpli
                                       (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius) : "") + ")"
                                 : "splits (thresholds: points > " + format_number(r.size_threshold) +
                                       ", AABB volume > " + format_number(r.volume_threshold) + ")";
-    return {io::with_field(in, "label", r.labels),
+    io::set_field(in, "label", r.labels);
+    return {std::move(in),
             "recursive_split: " + std::to_string(r.splits) + " " + how + ", " + std::to_string(r.cluster_count) +
                 " clusters"};
 }
@@ -122,20 +130,20 @@ ChainResult run_chain(io::Blob in, const ChainParams& p,
         out.notes.push_back(std::move(s.note));
     };
     if (p.color) {
-        take(apply_color_filter(cur, *p.color));
+        take(apply_color_filter(std::move(cur), *p.color));
     }
     if (p.crop) {
-        take(apply_crop(cur, *p.crop));
+        take(apply_crop(std::move(cur), *p.crop));
     }
     if (p.voxel) {
-        take(apply_voxel(cur, *p.voxel));
+        take(apply_voxel(std::move(cur), *p.voxel));
     }
     if (p.knn) {
-        take(apply_knn_outlier(cur, *p.knn));
+        take(apply_knn_outlier(std::move(cur), *p.knn));
     }
-    take(apply_dbscan(cur, p.dbscan, p.eps));
+    take(apply_dbscan(std::move(cur), p.dbscan, p.eps));
     if (p.split) {
-        take(apply_recursive_split(cur, *p.split));
+        take(apply_recursive_split(std::move(cur), *p.split));
     }
     out.labelled = std::move(cur);
     return out;

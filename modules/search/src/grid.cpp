@@ -65,15 +65,15 @@ Bounds empty_bounds() {
     return b;
 }
 
-Bounds finite_bounds(const Cloud& cloud) {
+Bounds finite_bounds(const XyzView& cloud) {
     Bounds b = empty_bounds();
-    const auto n = static_cast<std::int64_t>(cloud.size());
+    const auto n = static_cast<std::int64_t>(cloud.size);
 #pragma omp parallel
     {
         Bounds t = empty_bounds();  // not a copy of b, which another thread may be updating
 #pragma omp for schedule(static) nowait
         for (std::int64_t i = 0; i < n; ++i) {
-            const auto& p = cloud.points[static_cast<std::size_t>(i)];
+            const pcl::PointXYZ p = cloud[static_cast<std::size_t>(i)];
             if (!is_finite(p)) {
                 continue;
             }
@@ -146,7 +146,7 @@ constexpr std::uint32_t kLeafCells = 4;  // cells per k-d tree leaf
 
 }  // namespace
 
-double Grid::suggest_cell(const Cloud& cloud, double target) {
+double Grid::suggest_cell(const XyzView& cloud, double target) {
     const Bounds b = finite_bounds(cloud);
     if (b.n < 2) {
         return 1.0;
@@ -171,7 +171,8 @@ double Grid::suggest_cell(const Cloud& cloud, double target) {
     for (std::size_t stride = std::max<std::size_t>(1, b.n / 50000);; stride = std::max<std::size_t>(1, stride / 4)) {
         const std::uint64_t keep_below = ~std::uint64_t{0} / stride;
         sample.clear();
-        for (const auto& p : cloud.points) {
+        for (std::size_t i = 0; i < cloud.size; ++i) {
+            const pcl::PointXYZ p = cloud[i];
             if (!is_finite(p)) {
                 continue;
             }
@@ -238,7 +239,7 @@ int bit_width(std::int64_t v) {
 
 }  // namespace
 
-Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
+Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
     if (!(cell > 0) || !std::isfinite(cell)) {
         throw InvalidArgument("grid: cell must be > 0, got " + format_number(cell));
     }
@@ -258,18 +259,18 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
         using Key = decltype(zero);
         std::vector<Key> keys(b.n);
         order_.resize(b.n);
-        if (b.n == cloud.size()) {  // all finite (the usual case): in parallel
+        if (b.n == cloud.size) {  // all finite (the usual case): in parallel
             const auto n = static_cast<std::int64_t>(b.n);
 #pragma omp parallel for schedule(static)
             for (std::int64_t i = 0; i < n; ++i) {
-                const auto& p = cloud[static_cast<std::size_t>(i)];
+                const pcl::PointXYZ p = cloud[static_cast<std::size_t>(i)];
                 keys[static_cast<std::size_t>(i)] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
                 order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
             }
         } else {
             std::size_t at = 0;
-            for (std::uint32_t i = 0; i < cloud.size(); ++i) {
-                const auto& p = cloud[i];
+            for (std::uint32_t i = 0; i < cloud.size; ++i) {
+                const pcl::PointXYZ p = cloud[i];
                 if (is_finite(p)) {
                     keys[at] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
                     order_[at++] = i;
@@ -296,7 +297,7 @@ Grid::Grid(const Cloud& cloud, double cell) : cell_(cell), cloud_(&cloud) {
     const auto m = static_cast<std::int64_t>(order_.size());
 #pragma omp parallel for schedule(static)
     for (std::int64_t s = 0; s < m; ++s) {
-        const auto& p = cloud[order_[static_cast<std::size_t>(s)]];
+        const pcl::PointXYZ p = cloud[order_[static_cast<std::size_t>(s)]];
         xyz_[3 * s] = p.x;
         xyz_[3 * s + 1] = p.y;
         xyz_[3 * s + 2] = p.z;
@@ -438,10 +439,10 @@ void Grid::knn(std::uint32_t self,
                std::size_t k,
                std::vector<std::uint32_t>& idx,
                std::vector<double>& d2) const {
-    if (cloud_ == nullptr) {
+    if (!has_points_) {
         throw std::logic_error("grid: knn(i) after release_cloud()");
     }
-    search(cloud_->points[self], self, k, idx, d2);
+    search(points_[self], self, k, idx, d2);
 }
 
 void Grid::knn_point(const pcl::PointXYZ& q, std::size_t k, std::vector<std::uint32_t>& idx,
@@ -486,7 +487,7 @@ void Grid::search(const pcl::PointXYZ& q,
             insert_candidate(i, ex * ex + ey * ey + ez * ez, k, idx, d2);
         }
     };
-    const bool indexed = cloud_ != nullptr && self < cloud_->size() && is_finite((*cloud_)[self]);
+    const bool indexed = has_points_ && self < points_.size && is_finite(points_[self]);
     const std::size_t others = order_.size() - (indexed ? 1 : 0);
     for (std::int64_t r = 0;; ++r) {
         for (std::int64_t dz = -r; dz <= r; ++dz) {
@@ -821,7 +822,7 @@ void Grid::all_knn(std::size_t k,
     }
 }
 
-double median_spacing(const Cloud& cloud, std::size_t samples) {
+double median_spacing(const XyzView& cloud, std::size_t samples) {
     const Grid grid(cloud, Grid::suggest_cell(cloud));
     if (grid.finite_count() < 2) {
         return 0;

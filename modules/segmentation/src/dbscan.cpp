@@ -312,7 +312,7 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
     return r;
 }
 
-double estimate_eps(const Cloud& cloud, std::uint32_t min_points) {
+double estimate_eps(const XyzView& cloud, std::uint32_t min_points) {
     if (min_points < 2) {
         throw InvalidArgument("dbscan: eps auto needs min_points >= 2, got " +
                               std::to_string(min_points));
@@ -324,7 +324,7 @@ double estimate_eps(const Cloud& cloud, std::uint32_t min_points) {
                               std::to_string(grid.finite_count()));
     }
     // At most 200k evenly strided query points: the curve's shape, not every point, matters.
-    const std::size_t n = cloud.size();
+    const std::size_t n = cloud.size;
     const std::size_t stride = std::max<std::size_t>(1, n / 200000);
     std::vector<double> kdist;
 #pragma omp parallel

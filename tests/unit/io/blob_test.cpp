@@ -1,6 +1,7 @@
 #include <cmath>
-
+#include <cstring>
 #include <limits>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -14,52 +15,81 @@ namespace {
 
 using F = pcl::PCLPointField;
 
-TEST(Blob, SelectKeepsEveryFieldInIndexOrder) {
-    const Blob b = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, 5, 1,
-                                   [](std::size_t i, std::size_t k, std::uint32_t) {
-                                       return k == 0 ? i * 0.5 : i + 100.0;
-                                   });
-    const std::vector<std::uint32_t> idx = {4, 0, 2};
-    const Blob s = select(b, idx);
-    ASSERT_EQ(s.size(), 3u);
-    EXPECT_EQ(s.cloud.fields.size(), 2u);
+TEST(Blob, KeepPointsCompactsInPlaceKeepingEveryField) {
+    Blob b = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, 5, 1,
+                             [](std::size_t i, std::size_t k, std::uint32_t) {
+                                 return k == 0 ? i * 0.5 : i + 100.0;
+                             });
+    const Blob original = b;
+    const std::uint8_t* storage = b.cloud.data.data();
+    const std::vector<std::uint32_t> idx = {1, 3, 4};
+    keep_points(b, idx);
+    ASSERT_EQ(b.size(), 3u);
+    EXPECT_EQ(b.cloud.data.data(), storage);  // compacted where it was, not copied
+    EXPECT_EQ(b.cloud.data.size(), 3u * b.cloud.point_step);
+    EXPECT_EQ(b.cloud.row_step, 3u * b.cloud.point_step);
+    EXPECT_EQ(b.cloud.fields.size(), 2u);
     for (std::size_t j = 0; j < idx.size(); ++j) {
-        EXPECT_EQ(0, std::memcmp(&s.cloud.data[j * s.cloud.point_step],
-                                 &b.cloud.data[idx[j] * b.cloud.point_step], b.cloud.point_step));
+        EXPECT_EQ(0, std::memcmp(&b.cloud.data[j * b.cloud.point_step],
+                                 &original.cloud.data[idx[j] * b.cloud.point_step], b.cloud.point_step));
+    }
+    keep_points(b, {});
+    EXPECT_EQ(b.size(), 0u);
+}
+
+TEST(Blob, KeepPointsRejectsOutOfRangeRepeatedAndUnorderedIndices) {
+    for (const std::vector<std::uint32_t>& idx : {std::vector<std::uint32_t>{3}, {1, 1}, {2, 0}}) {
+        Blob b = test::random_xyz(3);
+        EXPECT_THROW(keep_points(b, idx), Error);
     }
 }
 
-TEST(Blob, SelectRejectsOutOfRangeIndex) {
-    const Blob b = test::random_xyz(3);
-    const std::vector<std::uint32_t> idx = {3};
-    EXPECT_THROW((void)select(b, idx), Error);
-}
-
-TEST(Blob, WithFieldAppendsThenOverwritesInPlace) {
-    const Blob b = test::random_xyz(4);
+TEST(Blob, SetFieldAppendsThenOverwritesInPlace) {
+    Blob b = test::random_xyz(4);
+    const Blob original = b;
     const std::vector<std::uint32_t> a = {1, 2, 3, 4}, c = {9, 8, 7, 6};
-    const Blob once = with_field(b, "label", a);
-    ASSERT_NE(find_field(once, "label"), nullptr);
-    EXPECT_EQ(once.cloud.point_step, b.cloud.point_step + 4);
-    const Blob twice = with_field(once, "label", c);
-    EXPECT_EQ(twice.cloud.fields.size(), once.cloud.fields.size());
-    const auto* f = find_field(twice, "label");
+    set_field(b, "label", a);
+    ASSERT_NE(find_field(b, "label"), nullptr);
+    const std::size_t old_step = original.cloud.point_step;
+    EXPECT_EQ(b.cloud.point_step, old_step + 4);
+    EXPECT_EQ(b.cloud.row_step, 4 * (old_step + 4));
+    for (std::size_t i = 0; i < 4; ++i) {  // every point moved intact to its wider slot
+        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * (old_step + 4)], &original.cloud.data[i * old_step],
+                                 old_step));
+    }
+    const std::size_t fields = b.cloud.fields.size();
+    set_field(b, "label", c);
+    EXPECT_EQ(b.cloud.fields.size(), fields);
+    EXPECT_EQ(b.cloud.point_step, old_step + 4);
+    const auto* f = find_field(b, "label");
     EXPECT_EQ(f->datatype, F::UINT32);
     for (std::size_t i = 0; i < 4; ++i) {
-        EXPECT_EQ(value_as_double(&twice.cloud.data[i * twice.cloud.point_step + f->offset],
-                                  f->datatype),
-                  c[i]);
+        EXPECT_EQ(value_as_double(&b.cloud.data[i * b.cloud.point_step + f->offset], f->datatype), c[i]);
+    }
+    EXPECT_THROW(set_field(b, "label", std::span(a).first(3)), Error);
+}
+
+TEST(Blob, SetFieldGrowsWithinTheRoomReservedByTheReaders) {
+    Blob b = test::random_xyz(1000);
+    std::vector<std::uint8_t> exact = b.cloud.data;  // a vector with no spare room
+    reserve_points(b, b.size());
+    const std::uint8_t* storage = b.cloud.data.data();
+    set_field(b, "label", std::vector<std::uint32_t>(1000, 7));
+    EXPECT_EQ(b.cloud.data.data(), storage);
+    for (std::size_t i = 0; i < 1000; ++i) {
+        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * b.cloud.point_step], &exact[i * (b.cloud.point_step - 4)],
+                                 b.cloud.point_step - 4));
     }
 }
 
-TEST(Blob, WithFieldReplacesFieldOfAnotherType) {
-    const Blob b = test::make_blob({{"x", F::FLOAT32}, {"label", F::INT16}, {"y", F::FLOAT32}}, 2,
-                                   1, [](auto...) { return 1.0; });
+TEST(Blob, SetFieldReplacesFieldOfAnotherType) {
+    Blob b = test::make_blob({{"x", F::FLOAT32}, {"label", F::INT16}, {"y", F::FLOAT32}}, 2, 1,
+                             [](auto...) { return 1.0; });
     const std::vector<std::uint32_t> v = {5, 6};
-    const Blob out = with_field(b, "label", v);
-    EXPECT_EQ(out.cloud.fields.size(), 3u);
-    EXPECT_EQ(find_field(out, "label")->datatype, F::UINT32);
-    EXPECT_NE(find_field(out, "y"), nullptr);
+    set_field(b, "label", v);
+    EXPECT_EQ(b.cloud.fields.size(), 3u);
+    EXPECT_EQ(find_field(b, "label")->datatype, F::UINT32);
+    EXPECT_NE(find_field(b, "y"), nullptr);
 }
 
 TEST(Blob, IsDenseFollowsEveryFloatField) {

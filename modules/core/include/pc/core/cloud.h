@@ -1,6 +1,8 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <pcl/point_cloud.h>
@@ -19,5 +21,29 @@ using Indices = std::vector<std::uint32_t>;
 [[nodiscard]] inline bool is_finite(const pcl::PointXYZ& p) {
     return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
 }
+
+/// Read-only x y z of `size` points laid out with a fixed byte stride, without a copy: a pcl
+/// cloud's points, or the F 4 x y z fields of a PCD blob where they are (io::xyz_points).
+struct XyzView {
+    const std::uint8_t* base = nullptr;
+    std::size_t stride = 0;  ///< bytes from one point to the next
+    std::size_t size = 0;
+    std::uint32_t offset[3] = {0, 4, 8};  ///< byte offsets of x, y, z (float) in a point
+
+    XyzView() = default;
+    explicit XyzView(const Cloud& cloud)
+        : base(reinterpret_cast<const std::uint8_t*>(cloud.points.data())),
+          stride(sizeof(pcl::PointXYZ)),
+          size(cloud.size()) {}
+
+    [[nodiscard]] pcl::PointXYZ operator[](std::size_t i) const {
+        const std::uint8_t* p = base + i * stride;
+        pcl::PointXYZ q;
+        std::memcpy(&q.x, p + offset[0], sizeof(float));
+        std::memcpy(&q.y, p + offset[1], sizeof(float));
+        std::memcpy(&q.z, p + offset[2], sizeof(float));
+        return q;
+    }
+};
 
 }  // namespace pc

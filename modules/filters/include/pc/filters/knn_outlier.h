@@ -28,6 +28,9 @@ struct KnnOutlierResult {
 /// Statistical outlier scoring (paper 2.3.2). Exact kNN on a uniform grid, OpenMP-parallel.
 /// Non-finite points are outliers and are nobody's neighbour; the threshold is computed over the
 /// finite points' scores. Deterministic: independent of thread count.
-[[nodiscard]] KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params);
+[[nodiscard]] KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params);
+[[nodiscard]] inline KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params) {
+    return knn_outlier(XyzView(cloud), params);
+}
 
 }  // namespace pc::filters

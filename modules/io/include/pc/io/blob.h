@@ -39,14 +39,20 @@ struct Blob {
 /// An empty cloud (width 0, height 1) with the same fields, point_step and viewpoint as `blob`.
 [[nodiscard]] Blob empty_like(const Blob& blob);
 
-/// The points at `indices`, in that order, all fields kept; the result is unorganised (height 1).
-[[nodiscard]] Blob select(const Blob& blob, std::span<const std::uint32_t> indices);
+/// Makes room in `blob.cloud.data` for `points` points of point_step bytes plus one U 4 field
+/// each, so that set_field() can append a label without a second copy of the cloud. The readers
+/// call it; room that is never written is never touched and costs address space, not memory.
+void reserve_points(Blob& blob, std::size_t points);
 
-/// `blob` with a `U 4` field `name` set from `values` (one per point). An existing field of that
-/// name is replaced wherever it sits, so repeated runs of a tool do not stack copies.
-[[nodiscard]] Blob with_field(const Blob& blob,
-                              const std::string& name,
-                              std::span<const std::uint32_t> values);
+/// Keeps the points at `indices` (strictly ascending, each < size()), in place: the data is
+/// compacted, not copied. The result is unorganised (height 1). Throws pc::Error on a bad index.
+void keep_points(Blob& blob, std::span<const std::uint32_t> indices);
+
+/// Sets a `U 4` field `name` from `values` (one per point), in place. An existing U 4 field of
+/// that name is overwritten where it sits, so repeated runs of a tool do not stack copies;
+/// otherwise the field is appended to each point (dropping an old field of that name from the
+/// field list) and the data grows within its capacity when there is room (see reserve_points).
+void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_t> values);
 
 /// Recomputes cloud.is_dense as PCL does: true iff every F4/F8 element of every point is finite.
 void update_is_dense(Blob& blob);

@@ -14,6 +14,23 @@ namespace pc::io {
 /// Throws pc::IoError when x, y or z is missing.
 [[nodiscard]] Cloud xyz(const Blob& blob);
 
+/// The x, y, z of every point for algorithms that take an XyzView: the blob's own floats where
+/// they are when x, y and z are F 4 (no copy: 16 bytes per point saved against xyz()), a converted
+/// copy otherwise. The blob must outlive this object. Throws pc::IoError as xyz() does.
+class XyzPoints {
+public:
+    explicit XyzPoints(const Blob& blob);
+    XyzPoints(const XyzPoints&) = delete;
+    XyzPoints& operator=(const XyzPoints&) = delete;
+    [[nodiscard]] const XyzView& view() const { return view_; }
+    /// Frees a converted copy (the view is empty afterwards); nothing to free for a view.
+    void release();
+
+private:
+    Cloud copy_;
+    XyzView view_;
+};
+
 /// A colour with channels in [0, 1].
 struct Rgb {
     float r = 0, g = 0, b = 0;

@@ -11,32 +11,33 @@
 namespace pc::pipeline {
 
 /// One chain step applied to a full cloud: every field it does not touch passes through.
-/// `note` says what the step did, for -v.
+/// `note` says what the step did, for -v. The steps take the cloud by value and work on it in
+/// place (pass a temporary or std::move): no second copy of the cloud is made.
 struct Step {
     io::Blob blob;
     std::string note;
 };
 
-[[nodiscard]] Step apply_color_filter(const io::Blob& in, const filters::ColorFilterParams& p);
-[[nodiscard]] Step apply_crop(const io::Blob& in, const filters::CropParams& p);
+[[nodiscard]] Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p);
+[[nodiscard]] Step apply_crop(io::Blob in, const filters::CropParams& p);
 /// One point per occupied voxel (io::aggregate: centroid, mean colour, majority integer fields).
-[[nodiscard]] Step apply_voxel(const io::Blob& in, const filters::VoxelParams& p);
+[[nodiscard]] Step apply_voxel(io::Blob in, const filters::VoxelParams& p);
 
 /// Options of the kNN outlier step beyond the algorithm's Params.
 struct KnnOutput {
     std::string mark_field;  ///< if set: write 0/1 (1 = outlier) to this U 4 field, drop nothing
     bool invert = false;     ///< keep only the outliers
 };
-[[nodiscard]] Step apply_knn_outlier(const io::Blob& in,
+[[nodiscard]] Step apply_knn_outlier(io::Blob in,
                                      const filters::KnnOutlierParams& p,
                                      const KnnOutput& out = {});
 
 /// Writes `label` (U 4). Unless the rule is fixed, eps is estimated first and reported in the note.
-[[nodiscard]] Step apply_dbscan(const io::Blob& in,
+[[nodiscard]] Step apply_dbscan(io::Blob in,
                                 segmentation::DbscanParams p,
                                 const EpsRule& eps = {});
 /// Reads and rewrites `label`.
-[[nodiscard]] Step apply_recursive_split(const io::Blob& in,
+[[nodiscard]] Step apply_recursive_split(io::Blob in,
                                          const segmentation::RecursiveSplitParams& p);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.

@@ -16,7 +16,10 @@ namespace pc::search {
 /// The median distance from a point to its nearest other point (the point spacing), over at most
 /// `samples` finite points taken at a fixed stride (deterministic); 0 with fewer than 2 points or
 /// when the sampled points all coincide with another.
-[[nodiscard]] double median_spacing(const Cloud& cloud, std::size_t samples = 20000);
+[[nodiscard]] double median_spacing(const XyzView& points, std::size_t samples = 20000);
+[[nodiscard]] inline double median_spacing(const Cloud& cloud, std::size_t samples = 20000) {
+    return median_spacing(XyzView(cloud), samples);
+}
 
 class Grid {
 public:
@@ -25,11 +28,17 @@ public:
 
     /// Builds the grid with cubic cells of side `cell` (> 0), enlarged if an axis would need more
     /// than 2^21 cells (queries stay exact). Non-finite points are left out.
-    Grid(const Cloud& cloud, double cell);
+    Grid(const XyzView& points, double cell);
+    /// The same over a pcl cloud (which, like the points of a view, must outlive the grid unless
+    /// release_cloud() is called).
+    Grid(const Cloud& cloud, double cell) : Grid(XyzView(cloud), cell) {}
 
     /// A cell side giving about `target` points per occupied cell (adapts to surfaces and lines:
     /// the occupancy is measured, not assumed).
-    [[nodiscard]] static double suggest_cell(const Cloud& cloud, double target = 4.0);
+    [[nodiscard]] static double suggest_cell(const XyzView& points, double target = 4.0);
+    [[nodiscard]] static double suggest_cell(const Cloud& cloud, double target = 4.0) {
+        return suggest_cell(XyzView(cloud), target);
+    }
 
     /// Calls f(index, d²) for every point with d² <= radius² (itself included); radius <= cell().
     template <class F>
@@ -80,7 +89,7 @@ public:
     [[nodiscard]] double cell() const { return cell_; }
     /// Forgets the cloud, which the caller may then free: sweeps, radius queries, knn_point()
     /// and all_knn() work on the grid's own copy of the points; knn(i) needs the cloud (throws).
-    void release_cloud() { cloud_ = nullptr; }
+    void release_cloud() { has_points_ = false; }
     [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
 
 private:
@@ -145,7 +154,8 @@ private:
     }
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
-    const Cloud* cloud_ = nullptr;
+    XyzView points_;  // the indexed points, for knn(i)
+    bool has_points_ = true;
 };
 
 template <class F>

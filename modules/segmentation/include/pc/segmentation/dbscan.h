@@ -42,6 +42,9 @@ struct DbscanResult {
 /// eps from the knee of the sorted distances to the (min_points − 1)-th nearest other point (the
 /// core-distance curve), found as the point farthest below the chord (Kneedle), with the curve
 /// clipped at its 99.5th percentile so a few far floaters do not flatten it. Deterministic.
-[[nodiscard]] double estimate_eps(const Cloud& cloud, std::uint32_t min_points);
+[[nodiscard]] double estimate_eps(const XyzView& points, std::uint32_t min_points);
+[[nodiscard]] inline double estimate_eps(const Cloud& cloud, std::uint32_t min_points) {
+    return estimate_eps(XyzView(cloud), min_points);
+}
 
 }  // namespace pc::segmentation
