@@ -19,11 +19,12 @@ constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis 
 
 /// LSD radix sort of (key, index) pairs, 12 bits per pass, skipping passes where all digits agree.
 /// Keys are 32-bit when the cell key fits (nearly always): half the bytes to move and hold.
+/// `k2` and `i2` are scratch of the same sizes, owned by the caller so that it decides when they
+/// are freed.
 template <class Key>
-void radix_sort(std::vector<Key>& keys, std::vector<std::uint32_t>& idx) {
+void radix_sort(std::vector<Key>& keys, std::vector<std::uint32_t>& idx, std::vector<Key>& k2,
+                std::vector<std::uint32_t>& i2) {
     const std::size_t n = keys.size();
-    std::vector<Key> k2(n);
-    std::vector<std::uint32_t> i2(n);
     Key all_or = 0, all_and = static_cast<Key>(~Key{0});
     for (auto k : keys) {
         all_or |= k;
@@ -255,10 +256,10 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
         dims_[a] = coord(static_cast<float>(b.hi[a]), a) + 1;
         bits_[a] = bit_width(dims_[a] - 1);
     }
+    order_.resize(b.n);
     const auto sort_points = [&](auto zero) {
         using Key = decltype(zero);
         std::vector<Key> keys(b.n);
-        order_.resize(b.n);
         if (b.n == cloud.size) {  // all finite (the usual case): in parallel
             const auto n = static_cast<std::int64_t>(b.n);
 #pragma omp parallel for schedule(static)
@@ -277,7 +278,20 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
                 }
             }
         }
-        radix_sort(keys, order_);
+        // The sort's scratch lives until the cells are built, then keys and scratch are freed
+        // together: one free block as large as xyz_ (32-bit keys), which xyz_ then reuses.
+        std::vector<Key> k2(b.n);
+        std::vector<std::uint32_t> i2(b.n);
+        radix_sort(keys, order_, k2, i2);
+        std::size_t cells = 0, rows = 0;
+        for (std::size_t s = 0; s < keys.size(); ++s) {
+            if (s == 0 || keys[s] != keys[s - 1]) {
+                ++cells;
+                rows += s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2]);
+            }
+        }
+        cells_.reserve(cells);
+        row_begin_.reserve(rows + 1);
         for (std::size_t s = 0; s < order_.size(); ++s) {
             if (s == 0 || keys[s] != keys[s - 1]) {
                 cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
@@ -293,6 +307,8 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
     } else {
         sort_points(std::uint64_t{0});
     }
+    // Allocated once the sort's scratch is free: that block (as large as xyz_ with 32-bit keys)
+    // is reused instead of adding to the peak.
     xyz_.resize(3 * order_.size());
     const auto m = static_cast<std::int64_t>(order_.size());
 #pragma omp parallel for schedule(static)
@@ -307,7 +323,6 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
     for (std::size_t r = 0; r + 1 < row_begin_.size(); ++r) {
         row_key_[r] = cells_[row_begin_[r]].key >> bits_[2];
     }
-    build_table(cells_.size(), [&](std::size_t c) { return cells_[c].key; }, table_, mask_, shift_);
     build_table(row_begin_.size() - 1,
                 [&](std::size_t r) { return row_key_[r]; }, row_table_,
                 row_mask_, row_shift_);
@@ -324,22 +339,6 @@ void Grid::unpack(std::uint64_t key, std::int64_t out[3]) const {
     key >>= bits_[2];
     out[1] = static_cast<std::int64_t>(key & ((std::uint64_t{1} << bits_[1]) - 1));
     out[0] = static_cast<std::int64_t>(key >> bits_[1]);
-}
-
-const Grid::Cell* Grid::find(std::int64_t x, std::int64_t y, std::int64_t z) const {
-    if (!inside(x, y, z)) {
-        return nullptr;
-    }
-    const std::uint64_t key = pack(x, y, z);
-    for (std::uint64_t h = slot(key);; ++h) {
-        const std::uint32_t at = table_[h & mask_];
-        if (at == 0) {
-            return nullptr;
-        }
-        if (cells_[at - 1].key == key) {
-            return &cells_[at - 1];
-        }
-    }
 }
 
 std::pair<std::uint32_t, std::uint32_t> Grid::row(std::int64_t x, std::int64_t y) const {
@@ -490,14 +489,18 @@ void Grid::search(const pcl::PointXYZ& q,
     const bool indexed = has_points_ && self < points_.size && is_finite(points_[self]);
     const std::size_t others = order_.size() - (indexed ? 1 : 0);
     for (std::int64_t r = 0;; ++r) {
-        for (std::int64_t dz = -r; dz <= r; ++dz) {
+        // Ring r by rows: rows on the square's edge give all of z - r .. z + r, inner rows only
+        // their two ends.
+        for (std::int64_t dx = -r; dx <= r; ++dx) {
             for (std::int64_t dy = -r; dy <= r; ++dy) {
-                const bool inner = std::abs(dz) < r && std::abs(dy) < r;
-                for (std::int64_t dx = -r; dx <= r; dx += (inner ? 2 * r : 1)) {
-                    if (const Cell* cell = find(c[0] + dx, c[1] + dy, c[2] + dz)) {
+                const bool edge = std::abs(dx) == r || std::abs(dy) == r;
+                for (const std::int64_t z_lo : {c[2] - r, c[2] + r}) {
+                    const std::int64_t z_hi = edge ? c[2] + r : z_lo;
+                    const auto [first, last] = row_span(c[0] + dx, c[1] + dy, z_lo, z_hi);
+                    for (const Cell* cell = first; cell < last; ++cell) {
                         consider(*cell);
                     }
-                    if (r == 0) {
+                    if (edge || r == 0) {
                         break;
                     }
                 }
@@ -523,29 +526,30 @@ void Grid::build_tree() const {
         // A k-d tree over the occupied cells (a few points each), split on cell coordinates:
         // cheaper to build than one over the points, and a cell's points are contiguous.
         const auto n = static_cast<std::uint32_t>(cells_.size());
-        std::vector<std::int32_t> coords(3 * std::size_t{n});
         tree_perm_.resize(n);
         for (std::uint32_t c = 0; c < n; ++c) {
-            std::int64_t v[3];
-            unpack(cells_[c].key, v);
-            for (int a = 0; a < 3; ++a) {
-                coords[3 * std::size_t{c} + a] = static_cast<std::int32_t>(v[a]);
-            }
             tree_perm_[c] = c;
         }
-        const auto at_axis = [&](std::uint32_t c, int axis) { return coords[3 * std::size_t{c} + axis]; };
-        nodes_.reserve(4 * (n / kLeafCells + 1));
+        const auto at_axis = [&](std::uint32_t c, int axis) {
+            std::int64_t v[3];
+            unpack(cells_[c].key, v);
+            return static_cast<std::int32_t>(v[axis]);
+        };
+        nodes_.reserve(2 * std::size_t{n});  // a binary tree with at most n leaves; untouched room costs nothing
         nodes_.push_back({0, n});
+        std::vector<std::uint32_t> mid;  // per node of a level: where its range splits (end = a leaf)
         // Level by level: the nodes of one level own disjoint ranges of tree_perm_, so they are
         // split in parallel; children are appended afterwards, in order.
         for (std::size_t level_begin = 0; level_begin < nodes_.size();) {
             const std::size_t level_end = nodes_.size();
+            mid.assign(level_end - level_begin, 0);
 #pragma omp parallel for schedule(dynamic, 1)
             for (std::int64_t at = static_cast<std::int64_t>(level_begin);
                  at < static_cast<std::int64_t>(level_end); ++at) {
                 Node& node = nodes_[static_cast<std::size_t>(at)];
                 const std::uint32_t b = node.begin, e = node.end;
-                node.mid = e;  // a leaf unless split below
+                std::uint32_t& split_at = mid[static_cast<std::size_t>(at) - level_begin];
+                split_at = e;  // a leaf unless split below
                 if (e - b <= kLeafCells) {
                     continue;
                 }
@@ -573,19 +577,19 @@ void Grid::build_tree() const {
                     ++boundary;
                 }
                 auto* split = std::partition(first, last, [&](std::uint32_t u) { return at_axis(u, axis) < boundary; });
-                node.mid = static_cast<std::uint32_t>(split - tree_perm_.data());
+                split_at = static_cast<std::uint32_t>(split - tree_perm_.data());
                 node.axis = static_cast<std::uint8_t>(axis);
                 node.plane = origin_[axis] + static_cast<double>(boundary) * cell_;
             }
             for (std::size_t at = level_begin; at < level_end; ++at) {
                 const Node node = nodes_[at];
-                if (node.mid == node.end) {
+                const std::uint32_t m = mid[at - level_begin];
+                if (m == node.end) {
                     continue;
                 }
-                nodes_[at].left = static_cast<std::int32_t>(nodes_.size());
-                nodes_.push_back({node.begin, node.mid});
-                nodes_[at].right = static_cast<std::int32_t>(nodes_.size());
-                nodes_.push_back({node.mid, node.end});
+                nodes_[at].left = static_cast<std::int32_t>(nodes_.size());  // right: left + 1
+                nodes_.push_back({node.begin, m});
+                nodes_.push_back({m, node.end});
             }
             level_begin = level_end;
         }
@@ -629,8 +633,8 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
             continue;
         }
         const double diff = v[node.axis] - node.plane;
-        const std::int32_t near = diff < 0 ? node.left : node.right;
-        const std::int32_t far = diff < 0 ? node.right : node.left;
+        const std::int32_t near = diff < 0 ? node.left : node.left + 1;
+        const std::int32_t far = diff < 0 ? node.left + 1 : node.left;
         const double gap = std::max(0.0, std::abs(diff) - slack);
         stack.push_back({far, std::max(bound, gap * gap)});
         stack.push_back({near, bound});

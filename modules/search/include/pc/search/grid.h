@@ -107,7 +107,6 @@ private:
     [[nodiscard]] bool inside(std::int64_t x, std::int64_t y, std::int64_t z) const {
         return x >= 0 && y >= 0 && z >= 0 && x < dims_[0] && y < dims_[1] && z < dims_[2];
     }
-    [[nodiscard]] const Cell* find(std::int64_t x, std::int64_t y, std::int64_t z) const;
     /// Cells [first, last) of the row (x, y, all z); empty when the row has no points.
     [[nodiscard]] std::pair<std::uint32_t, std::uint32_t> row(std::int64_t x, std::int64_t y) const;
     /// Sequential neighbour-cell enumeration for a run of cells in key order: one row look-up
@@ -124,10 +123,9 @@ private:
 
     // A k-d tree over the occupied cells, built on first need: the ring search bounds its work at
     // a few rings, and points far from everything else (floaters) are answered by the tree.
-    struct Node {
+    struct Node {                  // 24 bytes
         std::uint32_t begin, end;  // range of tree_perm_
-        std::uint32_t mid = 0;     // children [begin, mid) and [mid, end); end = a leaf
-        std::int32_t left = -1, right = -1;
+        std::int32_t left = -1;    // children left and left + 1; -1 = a leaf
         std::uint8_t axis = 0;
         double plane = 0;  // left: points below the plane, right: at or above (up to rounding)
     };
@@ -145,13 +143,6 @@ private:
     std::vector<float> xyz_;              // sorted by cell, 3 floats per point
     std::vector<std::uint32_t> order_;    // original index of each sorted point
     std::vector<Cell> cells_;
-    std::vector<std::uint32_t> table_;    // open addressing: cell index + 1, 0 = empty
-    std::uint64_t mask_ = 0;
-    int shift_ = 60;
-    /// Fibonacci hashing: the top bits of key × 2^64/φ, which depend on every bit of the key.
-    [[nodiscard]] std::uint64_t slot(std::uint64_t key) const {
-        return (key * 0x9E3779B97F4A7C15ull) >> shift_;
-    }
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
     XyzView points_;  // the indexed points, for knn(i)
