@@ -152,10 +152,11 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
                               ") must be at least eps (" + format_number(params.eps) + ")");
     }
     DbscanResult r;
-    r.labels.assign(n, kNoise);
-    r.core.assign(n, 0);
     const double eps2 = params.eps * params.eps;
     const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
+    if (m >= 0x80000000u) {
+        throw InvalidArgument("dbscan: at most 2^31 - 1 finite points, got " + std::to_string(m));
+    }
     std::vector<std::uint8_t> core(m, 0);
 
     // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
@@ -236,13 +237,15 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
         }
     }, [&](std::uint32_t c) { return comps[c] != 0; });
 
-    // 3. Each core point's component; border points take their nearest core point's (ties: the
-    //    smallest original index).
-    std::vector<std::uint32_t> root(m, kNone);
+    // 3. Each point's forest entry is set to its cluster's root: core points by their component
+    //    (the unions are done), border points by their nearest core point's (ties: the smallest
+    //    original index); noise keeps itself. A border entry is read by no find(): nothing links
+    //    to a non-core point.
+    auto& parent = forest.parent;
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
             if (core[s]) {
-                root[s] = forest.find(s);
+                parent[s].store(forest.find(s), std::memory_order_relaxed);
                 continue;
             }
             double best = std::numeric_limits<double>::infinity();
@@ -261,7 +264,7 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
                 }
             }
             if (best_t != kNone) {
-                root[s] = forest.find(best_t);
+                parent[s].store(forest.find(best_t), std::memory_order_relaxed);
             }
         }
     }, [&](std::uint32_t c) {  // only cells holding a border candidate
@@ -269,28 +272,43 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
                core.begin() + grid.cell_end(c);
     });
 
-    // The forest and the per-cell tables are done with: free them before numbering.
-    std::vector<std::atomic<std::uint32_t>>().swap(forest.parent);
+    // The per-cell tables are done with: free them before the result is allocated.
     std::vector<std::uint8_t>().swap(comp);
     std::vector<float>().swap(box);
     std::vector<std::uint32_t>().swap(first_core);
 
-    // 4. Number clusters by decreasing size, ties by smallest original member index: components
-    //    get compact ids first, so the per-cluster tables are as small as the cluster count.
-    std::vector<std::uint32_t> id(m, kNone);
+    // 4. Number clusters by decreasing size, ties by smallest original member index. Components
+    //    get compact ids first, written into their roots' own entries with a tag bit (no entry
+    //    names a root's entry as its parent any more): no per-point table beyond the forest.
+    constexpr std::uint32_t kTag = 0x80000000u;  // m < 2^31: checked above
     std::vector<std::uint32_t> size, first;
-    for (std::uint32_t s = 0; s < m; ++s) {
-        if (root[s] == kNone) {
-            continue;
-        }
-        std::uint32_t& k = id[root[s]];
-        if (k == kNone) {
-            k = static_cast<std::uint32_t>(size.size());
+    const auto id_of_root = [&](std::uint32_t root) {
+        std::uint32_t v = parent[root].load(std::memory_order_relaxed);
+        if ((v & kTag) == 0) {  // the cluster's first member seen: number it
+            v = kTag | static_cast<std::uint32_t>(size.size());
+            parent[root].store(v, std::memory_order_relaxed);
             size.push_back(0);
             first.push_back(kNone);
         }
-        ++size[k];
-        first[k] = std::min(first[k], grid.index_of(s));
+        return v & ~kTag;
+    };
+    // The compact id of sorted position s, or kNone for noise.
+    const auto cluster_of = [&](std::uint32_t s) {
+        const std::uint32_t p = parent[s].load(std::memory_order_relaxed);
+        if ((p & kTag) != 0) {
+            return p & ~kTag;  // a numbered root
+        }
+        if (p == s) {
+            return core[s] ? id_of_root(s) : kNone;  // an unnumbered root, or noise
+        }
+        return id_of_root(p);
+    };
+    for (std::uint32_t s = 0; s < m; ++s) {
+        const std::uint32_t k = cluster_of(s);
+        if (k != kNone) {
+            ++size[k];
+            first[k] = std::min(first[k], grid.index_of(s));
+        }
     }
     std::vector<std::uint32_t> roots(size.size());
     std::iota(roots.begin(), roots.end(), 0u);
@@ -301,11 +319,13 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
     for (std::uint32_t k = 0; k < roots.size(); ++k) {
         label_of[roots[k]] = k + 1;
     }
+    r.labels.assign(n, kNoise);
+    r.core.assign(n, 0);
     for (std::uint32_t s = 0; s < m; ++s) {
         const std::uint32_t i = grid.index_of(s);
         r.core[i] = core[s];
-        if (root[s] != kNone) {
-            r.labels[i] = label_of[id[root[s]]];
+        if (const std::uint32_t k = cluster_of(s); k != kNone) {
+            r.labels[i] = label_of[k];
         }
     }
     r.cluster_count = static_cast<std::uint32_t>(roots.size());
