@@ -16,50 +16,96 @@ void VoxelParams::validate() const {
     }
 }
 
-VoxelResult voxel_downsample(const Cloud& cloud, const VoxelParams& params) {
-    params.validate();
-    const std::size_t n = cloud.size();
-    VoxelResult r;
-    r.voxel.assign(n, io::kNoGroup);
-    double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
-                    std::numeric_limits<double>::infinity()};
-    for (const auto& p : cloud.points) {
-        if (is_finite(p)) {
-            lo[0] = std::min(lo[0], double{p.x});
-            lo[1] = std::min(lo[1], double{p.y});
-            lo[2] = std::min(lo[2], double{p.z});
-        }
-    }
-    using Key = std::tuple<std::int64_t, std::int64_t, std::int64_t>;
-    std::vector<std::pair<Key, std::uint32_t>> keyed;
-    keyed.reserve(n);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        const auto& p = cloud[i];
-        if (!is_finite(p)) {
-            continue;
-        }
-        const auto cell = [&](double v, int a) {
-            return static_cast<std::int64_t>(std::floor((v - (lo[a] - params.leaf / 2)) / params.leaf));
-        };
-        keyed.push_back({{cell(p.x, 0), cell(p.y, 1), cell(p.z, 2)}, i});
-    }
-    std::sort(keyed.begin(), keyed.end());  // by voxel, then by point index
-    // Voxel ids in order of each voxel's first point.
-    std::vector<std::pair<std::uint32_t, std::size_t>> firsts;  // (first point, run start)
+namespace {
+
+/// Voxel ids in order of each voxel's first point, from (voxel key, point index) pairs sorted by
+/// key then index.
+template <class Keyed>
+std::uint32_t number_voxels(const std::vector<Keyed>& keyed, std::vector<std::uint32_t>& voxel) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> firsts;  // (first point, run start)
     for (std::size_t s = 0; s < keyed.size(); ++s) {
         if (s == 0 || keyed[s].first != keyed[s - 1].first) {
-            firsts.push_back({keyed[s].second, s});
+            firsts.push_back({keyed[s].second, static_cast<std::uint32_t>(s)});
         }
     }
     std::sort(firsts.begin(), firsts.end());
     for (std::uint32_t v = 0; v < firsts.size(); ++v) {
         std::size_t s = firsts[v].second;
-        const Key key = keyed[s].first;
+        const auto key = keyed[s].first;
         for (; s < keyed.size() && keyed[s].first == key; ++s) {
-            r.voxel[keyed[s].second] = v;
+            voxel[keyed[s].second] = v;
         }
     }
-    r.count = static_cast<std::uint32_t>(firsts.size());
+    return static_cast<std::uint32_t>(firsts.size());
+}
+
+int bits_for(std::int64_t max_value) {
+    int b = 0;
+    while (b < 63 && (std::int64_t{1} << b) <= max_value) {
+        ++b;
+    }
+    return b;
+}
+
+}  // namespace
+
+VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
+    params.validate();
+    const std::size_t n = cloud.size;
+    VoxelResult r;
+    r.voxel.assign(n, io::kNoGroup);
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = std::numeric_limits<double>::infinity();
+        hi[a] = -lo[a];
+    }
+    std::size_t finite = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const pcl::PointXYZ p = cloud[i];
+        if (is_finite(p)) {
+            ++finite;
+            const double v[3] = {p.x, p.y, p.z};
+            for (int a = 0; a < 3; ++a) {
+                lo[a] = std::min(lo[a], v[a]);
+                hi[a] = std::max(hi[a], v[a]);
+            }
+        }
+    }
+    const auto cell = [&](double v, int a) {
+        return static_cast<std::int64_t>(std::floor((v - (lo[a] - params.leaf / 2)) / params.leaf));
+    };
+    int bits[3] = {0, 0, 0};
+    for (int a = 0; a < 3 && finite > 0; ++a) {
+        bits[a] = bits_for(cell(hi[a], a));
+    }
+    const auto sorted = [&](auto key_of) {
+        using Key = decltype(key_of(pcl::PointXYZ{}));
+        std::vector<std::pair<Key, std::uint32_t>> keyed;
+        keyed.reserve(finite);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const pcl::PointXYZ p = cloud[i];
+            if (is_finite(p)) {
+                keyed.push_back({key_of(p), i});
+            }
+        }
+        std::sort(keyed.begin(), keyed.end());  // by voxel, then by point index
+        return keyed;
+    };
+    if (bits[0] + bits[1] + bits[2] <= 64) {
+        // Voxel indices are >= 0 and fit: one packed word per key, the same order as (x, y, z).
+        r.count = number_voxels(sorted([&](const pcl::PointXYZ& p) {
+                                    return (static_cast<std::uint64_t>(cell(p.x, 0)) << (bits[1] + bits[2])) |
+                                           (static_cast<std::uint64_t>(cell(p.y, 1)) << bits[2]) |
+                                           static_cast<std::uint64_t>(cell(p.z, 2));
+                                }),
+                                r.voxel);
+    } else {  // more than 2^64 voxels in the bounding box
+        r.count = number_voxels(sorted([&](const pcl::PointXYZ& p) {
+                                    return std::tuple<std::int64_t, std::int64_t, std::int64_t>{
+                                        cell(p.x, 0), cell(p.y, 1), cell(p.z, 2)};
+                                }),
+                                r.voxel);
+    }
     return r;
 }
 

@@ -38,7 +38,7 @@ Step apply_crop(io::Blob in, const filters::CropParams& p) {
 }
 
 Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
-    const filters::VoxelResult v = filters::voxel_downsample(io::xyz(in), p);
+    const filters::VoxelResult v = filters::voxel_downsample(io::XyzPoints(in).view(), p);
     return {io::aggregate(in, v.voxel, v.count),
             "voxel: " + std::to_string(in.size()) + " points into " + std::to_string(v.count) +
                 " voxels of " + format_number(p.leaf)};

@@ -23,6 +23,9 @@ struct VoxelResult {
 /// finite points' minimum, so voxel index = floor((p - (min - leaf/2)) / leaf). Voxel ids follow
 /// the order of each voxel's first point. Non-finite points get no voxel. O(n log n).
 /// io::aggregate() turns the result into one point per voxel (centroid, mean colour, ...).
-[[nodiscard]] VoxelResult voxel_downsample(const Cloud& cloud, const VoxelParams& params);
+[[nodiscard]] VoxelResult voxel_downsample(const XyzView& points, const VoxelParams& params);
+[[nodiscard]] inline VoxelResult voxel_downsample(const Cloud& cloud, const VoxelParams& params) {
+    return voxel_downsample(XyzView(cloud), params);
+}
 
 }  // namespace pc::filters
