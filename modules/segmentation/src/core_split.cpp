@@ -256,9 +256,9 @@ void CoreSplitParams::validate() const {
     }
 }
 
-CoreSplitResult core_split(const Cloud& cloud, std::span<const std::uint32_t> labels, const CoreSplitParams& params) {
+CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> labels, const CoreSplitParams& params) {
     params.validate();
-    const std::size_t n = cloud.size();
+    const std::size_t n = cloud.size;
     if (labels.size() != n) {
         throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
                               std::to_string(labels.size()));

@@ -13,12 +13,13 @@ namespace pc::segmentation {
 
 namespace {
 
-double aabb_volume(const Cloud& cloud, const std::vector<std::uint32_t>& members) {
+double aabb_volume(const XyzView& cloud, const std::vector<std::uint32_t>& members) {
     float lo[3] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
                    std::numeric_limits<float>::max()};
     float hi[3] = {-lo[0], -lo[1], -lo[2]};
     for (std::uint32_t i : members) {
-        const float v[3] = {cloud[i].x, cloud[i].y, cloud[i].z};
+        const pcl::PointXYZ p = cloud[i];
+        const float v[3] = {p.x, p.y, p.z};
         for (int a = 0; a < 3; ++a) {
             lo[a] = std::min(lo[a], v[a]);
             hi[a] = std::max(hi[a], v[a]);
@@ -90,7 +91,7 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
     return static_cast<std::uint32_t>(ids.size());
 }
 
-RecursiveSplitResult recursive_split(const Cloud& cloud,
+RecursiveSplitResult recursive_split(const XyzView& cloud,
                                      std::span<const std::uint32_t> labels,
                                      const RecursiveSplitParams& params) {
     params.validate();
@@ -108,7 +109,7 @@ RecursiveSplitResult recursive_split(const Cloud& cloud,
         r.hollow_radius = c.hollow_radius;
         return r;
     }
-    const std::size_t n = cloud.size();
+    const std::size_t n = cloud.size;
     if (labels.size() != n) {
         throw InvalidArgument("recursive_split: labels must be one per point (" +
                               std::to_string(n) + "), got " + std::to_string(labels.size()));

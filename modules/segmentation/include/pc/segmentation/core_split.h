@@ -56,8 +56,13 @@ struct CoreSplitResult {
 /// radius up to 1.33 × the fruit's is one fruit. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
 /// centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0 stays noise;
 /// non-finite points become noise. Deterministic.
-[[nodiscard]] CoreSplitResult core_split(const Cloud& cloud,
+[[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::span<const std::uint32_t> labels,
                                          const CoreSplitParams& params);
+[[nodiscard]] inline CoreSplitResult core_split(const Cloud& cloud,
+                                                std::span<const std::uint32_t> labels,
+                                                const CoreSplitParams& params) {
+    return core_split(XyzView(cloud), labels, params);
+}
 
 }  // namespace pc::segmentation

@@ -54,9 +54,14 @@ struct RecursiveSplitResult {
 /// k-means (k = 2) on x, y, z; both halves are re-examined; no depth limit (a split that leaves a
 /// half empty stops). Label 0 stays noise; non-finite points become noise. Numbering: decreasing
 /// size, ties by smallest point index. Deterministic for a given seed.
-[[nodiscard]] RecursiveSplitResult recursive_split(const Cloud& cloud,
+[[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
                                                    std::span<const std::uint32_t> labels,
                                                    const RecursiveSplitParams& params);
+[[nodiscard]] inline RecursiveSplitResult recursive_split(const Cloud& cloud,
+                                                          std::span<const std::uint32_t> labels,
+                                                          const RecursiveSplitParams& params) {
+    return recursive_split(XyzView(cloud), labels, params);
+}
 
 /// Renumbers `labels` (0 = noise kept) as 1..N by decreasing cluster size, ties by smallest point
 /// index; clusters below `min_size` points become 0. Returns N.
