@@ -69,6 +69,7 @@ peer() {
 
 rows="$data/rows.txt"
 : >"$rows"
+: >"$data/mem.txt"
 row() { echo "| $1 | $2 | $3 | $4 | $5 |" >>"$rows"; echo "$1 $2: $3 vs $4 ($5)" >&2; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a > 0) printf "%.1fx", b / a; else print "-" }'; }
 fmt() { awk -v s="$1" -v m="$2" 'BEGIN { printf "%.3f s, %d MB", s, m }'; }
@@ -134,6 +135,32 @@ for size in "${sizes[@]}"; do
   row "whole chain, paper-dense" "$label" "$(fmt "$s1" "$m1") (6 tools, real pipes)" "pc_fruitcount --preset paper-dense: $(fmt "$s2" "$m2"); default (dense): $(fmt "$s3" "$m3")" "-"
   echo "$size $points $bytes" >>"$data/sizes.txt"
 
+  # Peak memory of every cloud tool against the cloud it reads (file bytes = the cloud in memory,
+  # binary PCD); the split and count tools read pc_dbscan's labelled output.
+  $b/pc_dbscan --preset paper-dense -i "$cloud" -o "$data/labelled.pcd"
+  lbytes=$(stat -c %s "$data/labelled.pcd")
+  while IFS='|' read -r tool args input; do
+    in="$cloud"; inbytes=$bytes
+    [ "$input" = labelled ] && { in="$data/labelled.pcd"; inbytes=$lbytes; }
+    /usr/bin/time -f "%M" -o "$data/mem_one.txt" $b/$tool $args -i "$in" >/dev/null
+    awk -v t="$tool${args:+ $args}" -v l="$label" -v m="$(tail -1 "$data/mem_one.txt")" -v c="$inbytes" \
+      'BEGIN { printf "| %s | %s | %d MB | %d MB | %.2fx |\n", t, l, m / 1024, c / 1e6, m * 1024 / c }' >>"$data/mem.txt"
+  done <<'TOOLS'
+pc_convert||
+pc_info||
+pc_colorfilter|--preset paper-dense|
+pc_crop|--min -100,-100,-100 --max 100,100,100|
+pc_transform|--translate 1,0,0|
+pc_voxel|--leaf 0.01|
+pc_knn_outlier|--preset paper-dense|
+pc_dbscan|--preset paper-dense|
+pc_extent||
+pc_recursive_split|--preset paper-dense|labelled
+pc_count||labelled
+pc_fruitcount|--preset paper-dense|
+pc_fruitcount||
+TOOLS
+
   if [ "$size" = "${sizes[0]}" ]; then
     $b/pc_dbscan --eps 0.015 --min-points 10 -i "$cloud" -o "$data/db.pcd"
     checks+="- $($py bench/peers.py check_dbscan "$cloud" "$data/db.pcd" 0.015 10) (${label} points)"$'\n'
@@ -158,6 +185,14 @@ Clouds: \`pc_synth --species apple --voxel 0.0066\` with the fruit count and can
 $table
 
 Start-up: $startup per \`pc_dbscan --version\` (20 runs).
+
+Peak memory of each tool (one run, peak RSS) against the cloud it reads (the binary PCD's bytes,
+which is also its size in memory); pc_recursive_split and pc_count read pc_dbscan's labelled
+output (4 more bytes per point):
+
+| tool | points | peak RSS | cloud | ratio |
+| --- | --- | --- | --- | ---: |
+$(cat "$data/mem.txt")
 
 Checks made while benchmarking:
 $checks
