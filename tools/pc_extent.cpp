@@ -117,7 +117,8 @@ int main(int argc, char** argv) {
         std::vector<Row> rows;
         for (std::size_t k = 0; k < inputs.size(); ++k) {
             const pc::io::Blob blob = io.read(inputs[k]);
-            const pc::Cloud cloud = pc::io::xyz(blob);
+            const pc::io::XyzPoints points(blob);
+            const pc::XyzView& cloud = points.view();
             Row r;
             r.input = pc::io::display_name(inputs[k]);
             r.name = names.empty() ? (inputs[k] == "-" ? r.input

@@ -45,13 +45,13 @@ bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
 
 }  // namespace
 
-Extent extent(const Cloud& cloud, std::span<const std::uint32_t> indices) {
+Extent extent(const XyzView& cloud, std::span<const std::uint32_t> indices) {
     Extent e;
     std::vector<double> xyz;
-    const std::size_t count = indices.empty() ? cloud.size() : indices.size();
+    const std::size_t count = indices.empty() ? cloud.size : indices.size();
     xyz.reserve(3 * count);
     for (std::size_t k = 0; k < count; ++k) {
-        const auto& p = cloud[indices.empty() ? k : indices[k]];
+        const pcl::PointXYZ p = cloud[indices.empty() ? k : indices[k]];
         if (!is_finite(p)) {
             continue;
         }
@@ -92,11 +92,11 @@ Extent extent(const Cloud& cloud, std::span<const std::uint32_t> indices) {
     return e;
 }
 
-std::vector<LabelledExtent> extent_per_label(const Cloud& cloud,
+std::vector<LabelledExtent> extent_per_label(const XyzView& cloud,
                                              std::span<const std::uint32_t> labels) {
-    if (labels.size() != cloud.size()) {
+    if (labels.size() != cloud.size) {
         throw InvalidArgument("extent_per_label: labels must be one per point (" +
-                              std::to_string(cloud.size()) + "), got " +
+                              std::to_string(cloud.size) + "), got " +
                               std::to_string(labels.size()));
     }
     std::map<std::uint32_t, std::vector<std::uint32_t>> members;

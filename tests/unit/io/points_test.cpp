@@ -22,6 +22,36 @@ TEST(Points, XyzConvertsDoubleCoordinates) {
     EXPECT_EQ(c[1].z, 10.5f);
 }
 
+TEST(Points, XyzPointsViewFloatFieldsInPlaceInAnyOrderAndConvertOthers) {
+    // F 4 fields in another order with a field between: a view of the blob's own bytes.
+    const Blob floats = test::make_blob({{"z", F::FLOAT32}, {"id", F::UINT16}, {"x", F::FLOAT32}, {"y", F::FLOAT32}},
+                                        3, 1, [](std::size_t i, std::size_t k, std::uint32_t) {
+                                            return static_cast<double>(10 * i + k) + 0.25;
+                                        });
+    const XyzPoints view(floats);
+    ASSERT_EQ(view.view().size, 3u);
+    EXPECT_EQ(view.view().base, floats.cloud.data.data());
+    // F 8 fields: a converted copy, the same values as xyz().
+    const Blob doubles = test::make_blob({{"x", F::FLOAT64}, {"y", F::FLOAT64}, {"z", F::FLOAT64}}, 3, 1,
+                                         [](std::size_t i, std::size_t k, std::uint32_t) {
+                                             return static_cast<double>(10 * i + k) + 0.25;
+                                         });
+    XyzPoints copy(doubles);
+    EXPECT_NE(copy.view().base, doubles.cloud.data.data());
+    for (const auto& [blob, points] : {std::pair<const Blob*, const XyzPoints*>{&floats, &view}, {&doubles, &copy}}) {
+        const Cloud expected = xyz(*blob);
+        for (std::size_t i = 0; i < 3; ++i) {
+            const pcl::PointXYZ p = points->view()[i];
+            EXPECT_EQ(p.x, expected[i].x);
+            EXPECT_EQ(p.y, expected[i].y);
+            EXPECT_EQ(p.z, expected[i].z);
+        }
+    }
+    copy.release();
+    EXPECT_EQ(copy.view().size, 0u);
+    EXPECT_THROW(XyzPoints(test::make_blob({{"x", F::FLOAT32}}, 1, 1, [](auto...) { return 0.0; })), IoError);
+}
+
 TEST(Points, XyzWithoutCoordinatesIsAnError) {
     EXPECT_THROW((void)xyz(test::make_blob({{"x", F::FLOAT32}}, 1, 1, [](auto...) { return 0.0; })),
                  IoError);

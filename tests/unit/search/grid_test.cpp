@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <mutex>
 #include <tuple>
@@ -49,6 +50,37 @@ TEST(Grid, KnnMatchesBruteForceOnRandomClouds) {
     const Cloud c = test::uniform(1500, 1.0f, 3);
     for (double cell : {0.01, 0.05, 0.3, 2.0, Grid::suggest_cell(c)}) {
         expect_knn_matches_brute_force(c, 6, cell);
+    }
+}
+
+TEST(Grid, WorksOnAStridedViewWithFieldsInAnyOrder) {
+    // Records of 20 bytes holding z, 4 other bytes, x, y: a PCD blob's layout, read in place.
+    const Cloud c = test::uniform(800, 1.0f, 5);
+    std::vector<std::uint8_t> bytes(c.size() * 20, 0xAB);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        std::memcpy(&bytes[20 * i], &c[i].z, 4);
+        std::memcpy(&bytes[20 * i + 8], &c[i].x, 4);
+        std::memcpy(&bytes[20 * i + 12], &c[i].y, 4);
+    }
+    XyzView view;
+    view.base = bytes.data();
+    view.stride = 20;
+    view.size = c.size();
+    view.offset[0] = 8;
+    view.offset[1] = 12;
+    view.offset[2] = 0;
+    EXPECT_EQ(Grid::suggest_cell(view), Grid::suggest_cell(c));
+    const Grid grid(view, 0.1);
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    for (std::uint32_t i = 0; i < c.size(); ++i) {
+        grid.knn(i, 5, idx, d2);
+        const auto ref = brute_knn(c, i, 5);
+        ASSERT_EQ(idx.size(), ref.size());
+        for (std::size_t m = 0; m < ref.size(); ++m) {
+            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
+            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
+        }
     }
 }
 

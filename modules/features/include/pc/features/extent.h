@@ -27,14 +27,21 @@ struct Extent {
 /// ("Qt", totals from "FA"), the same library and totals as scipy.spatial.ConvexHull. A set with
 /// fewer than 4 finite points, or coplanar/collinear, is degenerate: hull volume and area 0.
 /// O(n log n).
-[[nodiscard]] Extent extent(const Cloud& cloud, std::span<const std::uint32_t> indices = {});
+[[nodiscard]] Extent extent(const XyzView& points, std::span<const std::uint32_t> indices = {});
+[[nodiscard]] inline Extent extent(const Cloud& cloud, std::span<const std::uint32_t> indices = {}) {
+    return extent(XyzView(cloud), indices);
+}
 
 /// One Extent per label value > 0 of `labels` (one per point), ascending label.
 struct LabelledExtent {
     std::uint32_t label = 0;
     Extent extent;
 };
-[[nodiscard]] std::vector<LabelledExtent> extent_per_label(const Cloud& cloud,
+[[nodiscard]] std::vector<LabelledExtent> extent_per_label(const XyzView& points,
                                                            std::span<const std::uint32_t> labels);
+[[nodiscard]] inline std::vector<LabelledExtent> extent_per_label(const Cloud& cloud,
+                                                                  std::span<const std::uint32_t> labels) {
+    return extent_per_label(XyzView(cloud), labels);
+}
 
 }  // namespace pc::features
