@@ -753,14 +753,17 @@ void Grid::all_knn(std::size_t k,
                 gap[a][4] = (above + cell_) * (above + cell_);
                 margin = std::min({margin, below, above});
             }
+            const double px = xyz_[3 * s], py = xyz_[3 * s + 1], pz = xyz_[3 * s + 2];
             const auto scan = [&](const std::vector<Segment>& cells) {
                 double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
                 for (const Segment& seg : cells) {
                     if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] > worst) {
                         continue;  // every point of that cell is farther than the k-th
                     }
-                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end; ++t) {
-                        const double dd = dist2(s, t);
+                    const float* q = &xyz_[3 * std::size_t{cells_[seg.cell].begin}];
+                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end; ++t, q += 3) {
+                        const double ex = px - q[0], ey = py - q[1], ez = pz - q[2];
+                        const double dd = ex * ex + ey * ey + ez * ez;
                         if (dd <= worst && t != s) {
                             insert_candidate(order_[t], dd, k, w.idx, w.d2);
                             if (w.idx.size() == k) {
