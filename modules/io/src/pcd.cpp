@@ -490,28 +490,10 @@ void write_compressed(const Blob& blob, const std::vector<Field>& fields, ByteSi
 
 }  // namespace
 
-std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix) {
-    try {
-        const Header h = parse_header(prefix);
-        if (h.data != DataKind::kBinary) {
-            return std::nullopt;
-        }
-        std::vector<std::string> notes;
-        const Layout l = validate(h, notes);
-        if (l.point_step != 0 && l.n > (std::numeric_limits<std::uint64_t>::max() - h.body_offset) / l.point_step) {
-            return std::nullopt;
-        }
-        return h.body_offset + l.n * l.point_step;
-    } catch (const Error&) {
-        return std::nullopt;
-    }
-}
+namespace {
 
-ReadResult parse_pcd(std::string_view bytes) {
-    ReadResult r;
-    const Header h = parse_header(bytes);
-    const Layout l = validate(h, r.notes);
-    Blob& blob = r.blob;
+/// The cloud's shell from a validated header: every value but the data.
+void set_shell(const Header& h, const Layout& l, Blob& blob) {
     blob.viewpoint = h.viewpoint;
     blob.cloud.fields = l.fields;
     blob.cloud.point_step = static_cast<std::uint32_t>(l.point_step);
@@ -519,6 +501,42 @@ ReadResult parse_pcd(std::string_view bytes) {
     blob.cloud.height = static_cast<std::uint32_t>(l.height);
     blob.cloud.row_step = static_cast<std::uint32_t>(l.point_step * l.width);
     blob.cloud.is_bigendian = false;
+}
+
+}  // namespace
+
+std::optional<PcdStart> start_binary_pcd(std::string_view prefix) {
+    try {
+        const Header h = parse_header(prefix);
+        if (h.data != DataKind::kBinary) {
+            return std::nullopt;
+        }
+        PcdStart s;
+        const Layout l = validate(h, s.result.notes);
+        if (l.point_step != 0 && l.n > (std::numeric_limits<std::uint64_t>::max() - h.body_offset) / l.point_step) {
+            return std::nullopt;
+        }
+        set_shell(h, l, s.result.blob);
+        s.result.format = "pcd binary";
+        s.body_offset = h.body_offset;
+        s.body_bytes = l.n * l.point_step;
+        return s;
+    } catch (const Error&) {
+        return std::nullopt;
+    }
+}
+
+std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix) {
+    const auto s = start_binary_pcd(prefix);
+    return s ? std::optional<std::uint64_t>(s->body_offset + s->body_bytes) : std::nullopt;
+}
+
+ReadResult parse_pcd(std::string_view bytes) {
+    ReadResult r;
+    const Header h = parse_header(bytes);
+    const Layout l = validate(h, r.notes);
+    Blob& blob = r.blob;
+    set_shell(h, l, blob);
     switch (h.data) {
         case DataKind::kAscii:
             read_ascii(bytes, h, l, blob);

@@ -9,6 +9,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <utility>
 
 #include <pc/core/error.h>
@@ -79,6 +80,7 @@ std::string display_name(const std::string& path) { return path == "-" ? "<stdin
 InputBytes::InputBytes(InputBytes&& other) noexcept
     : data_(std::exchange(other.data_, nullptr)),
       size_(std::exchange(other.size_, 0)),
+      capacity_(std::exchange(other.capacity_, 0)),
       mapped_(std::exchange(other.mapped_, false)) {}
 
 InputBytes& InputBytes::operator=(InputBytes&& other) noexcept {
@@ -86,6 +88,7 @@ InputBytes& InputBytes::operator=(InputBytes&& other) noexcept {
         release();
         data_ = std::exchange(other.data_, nullptr);
         size_ = std::exchange(other.size_, 0);
+        capacity_ = std::exchange(other.capacity_, 0);
         mapped_ = std::exchange(other.mapped_, false);
     }
     return *this;
@@ -101,99 +104,190 @@ void InputBytes::release() {
     }
     data_ = nullptr;
     size_ = 0;
+    capacity_ = 0;
     mapped_ = false;
 }
 
-InputBytes read_all(const std::string& path, std::uint64_t max_bytes) {
-    const bool is_stdin = path == "-";
-    const int fd = is_stdin ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) {
-        throw IoError(std::string("cannot open: ") + std::strerror(errno));
+/// One opened input: the file descriptor (closed at the end unless stdin), its stat, and the
+/// reading steps shared by read_all() and read_cloud().
+struct InputReader {
+    int fd = -1;
+    bool own = false;
+    struct stat st {};
+    std::uint64_t max_bytes = 0;
+
+    InputReader(const std::string& path, std::uint64_t max) : max_bytes(max) {
+        const bool is_stdin = path == "-";
+        fd = is_stdin ? 0 : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) {
+            throw IoError(std::string("cannot open: ") + std::strerror(errno));
+        }
+        own = !is_stdin;
+        if (::fstat(fd, &st) != 0) {
+            throw IoError(std::string("cannot stat: ") + std::strerror(errno));
+        }
+        if (S_ISDIR(st.st_mode)) {
+            throw IoError("is a directory");
+        }
+        if (S_ISBLK(st.st_mode)) {
+            throw IoError("is a block device");
+        }
+        if (S_ISFIFO(st.st_mode)) {
+            (void)::fcntl(fd, F_SETPIPE_SZ, 1 << 20);  // fewer wake-ups on large pipes
+        }
     }
-    struct Closer {
-        int fd;
-        bool own;
-        ~Closer() {
-            if (own) {
-                ::close(fd);
+    InputReader(const InputReader&) = delete;
+    InputReader& operator=(const InputReader&) = delete;
+    ~InputReader() {
+        if (own) {
+            ::close(fd);
+        }
+    }
+
+    [[nodiscard]] bool regular() const { return S_ISREG(st.st_mode) && st.st_size > 0; }
+
+    [[noreturn]] void over_limit() const {
+        throw IoError("input exceeds the limit of " + std::to_string(max_bytes) + " B (--max-input-bytes)");
+    }
+
+    /// One read(2) into `to` (at most `n` bytes), retried on EINTR; 0 at the end of the input.
+    std::size_t read_some(void* to, std::size_t n) const {
+        while (true) {
+            const ssize_t got = ::read(fd, to, n);
+            if (got >= 0) {
+                return static_cast<std::size_t>(got);
+            }
+            if (errno != EINTR) {
+                throw IoError(std::string("read failed: ") + std::strerror(errno));
             }
         }
-    } closer{fd, !is_stdin};
-    struct stat st {};
-    if (::fstat(fd, &st) != 0) {
-        throw IoError(std::string("cannot stat: ") + std::strerror(errno));
     }
-    if (S_ISDIR(st.st_mode)) {
-        throw IoError("is a directory");
-    }
-    if (S_ISBLK(st.st_mode)) {
-        throw IoError("is a block device");
-    }
-    InputBytes in;
-    if (S_ISREG(st.st_mode) && st.st_size > 0) {
+
+    /// A read-only mapping of a regular file (no copy, no zero-fill; MAP_POPULATE faults it in
+    /// with read-ahead), or false when the file system cannot map.
+    bool map(InputBytes& in) const {
         const auto size = static_cast<std::uint64_t>(st.st_size);
         if (size > max_bytes) {
             throw IoError("input is " + std::to_string(size) + " B, above the limit of " +
                           std::to_string(max_bytes) + " B (--max-input-bytes)");
         }
-        // Map the file: no copy, no zero-fill. MAP_POPULATE faults it in with read-ahead.
         void* p = ::mmap(nullptr, size, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
-        if (p != MAP_FAILED) {
-            in.data_ = static_cast<char*>(p);
-            in.size_ = size;
-            in.mapped_ = true;
-            return in;
+        if (p == MAP_FAILED) {
+            return false;
         }
-        // Some file systems cannot map: read it instead, below.
+        in.data_ = static_cast<char*>(p);
+        in.size_ = size;
+        in.mapped_ = true;
+        return true;
     }
-    if (S_ISFIFO(st.st_mode)) {
-        (void)::fcntl(fd, F_SETPIPE_SZ, 1 << 20);  // fewer wake-ups on large pipes
-    }
-    std::size_t capacity = S_ISREG(st.st_mode) ? static_cast<std::size_t>(st.st_size) + 1 : 1 << 20;
-    bool sized = false;
-    while (true) {
-        if (in.size_ == capacity || in.data_ == nullptr) {
+
+    /// One more read into the growing heap buffer `in`; false at the end of the input. While the
+    /// buffer may still be a header, a binary PCD's header sizes it once (plus one byte to see the
+    /// end) instead of doubling and copying; only a hint: on failure it grows as usual.
+    bool read_more(InputBytes& in, bool size_from_header = true) const {
+        if (in.size_ == in.capacity_ || in.data_ == nullptr) {
+            std::size_t capacity = regular() ? static_cast<std::size_t>(st.st_size) + 1 : 1 << 20;
             if (in.data_ != nullptr) {
                 if (in.size_ >= max_bytes) {
-                    throw IoError("input exceeds the limit of " + std::to_string(max_bytes) +
-                                  " B (--max-input-bytes)");
+                    over_limit();
                 }
-                capacity = static_cast<std::size_t>(std::min<std::uint64_t>(capacity * 2, max_bytes + 1));
+                capacity = static_cast<std::size_t>(std::min<std::uint64_t>(in.capacity_ * 2, max_bytes + 1));
             }
             char* grown = static_cast<char*>(std::realloc(in.data_, capacity));
             if (grown == nullptr) {
                 throw std::bad_alloc();
             }
             in.data_ = grown;
+            in.capacity_ = capacity;
         }
-        const ssize_t n = ::read(fd, in.data_ + in.size_, capacity - in.size_);
-        if (n < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            throw IoError(std::string("read failed: ") + std::strerror(errno));
-        }
+        const std::size_t n = read_some(in.data_ + in.size_, in.capacity_ - in.size_);
         if (n == 0) {
-            break;
+            return false;
         }
-        in.size_ += static_cast<std::size_t>(n);
-        if (!sized && in.size_ <= detail::kMaxHeaderBytes) {
-            // A binary PCD says its size in its header: one buffer of that size (plus one byte to
-            // see the end) instead of doubling and copying. Only a hint: on failure, grow as usual.
+        const bool was_small = in.size_ <= detail::kMaxHeaderBytes;
+        in.size_ += n;
+        if (was_small && size_from_header) {
             if (const auto total = pcd_binary_size({in.data_, in.size_});
-                total && *total + 1 > capacity && *total < max_bytes) {
-                sized = true;
+                total && *total + 1 > in.capacity_ && *total < max_bytes) {
                 if (char* exact = static_cast<char*>(std::realloc(in.data_, *total + 1))) {
                     in.data_ = exact;
-                    capacity = *total + 1;
+                    in.capacity_ = *total + 1;
                 }
             }
         }
+        return true;
     }
-    if (in.size_ > max_bytes) {
-        throw IoError("input exceeds the limit of " + std::to_string(max_bytes) +
-                      " B (--max-input-bytes)");
+
+    /// A first buffer of 64 KiB: enough for nearly every header, small enough not to read a
+    /// whole file before its header is seen.
+    void start_small(InputBytes& in) const {
+        in.data_ = static_cast<char*>(std::malloc(std::size_t{1} << 16));
+        if (in.data_ == nullptr) {
+            throw std::bad_alloc();
+        }
+        in.capacity_ = std::size_t{1} << 16;
     }
+
+    void read_to_end(InputBytes& in) const {
+        while (read_more(in)) {
+        }
+        if (in.size_ > max_bytes) {
+            over_limit();
+        }
+    }
+
+    /// The body of a binary PCD read straight into the cloud's memory (one copy of the cloud, not
+    /// two), after the beginning of the input in `prefix`. The memory is reserved for what the
+    /// header declares (address space only) and filled as the bytes arrive, so a header that lies
+    /// costs only the bytes present. nullopt, with nothing more read, when that reservation fails.
+    std::optional<ReadResult> finish_binary(PcdStart& start, std::string_view prefix) const {
+        Blob& blob = start.result.blob;
+        const std::uint64_t points = std::uint64_t{blob.cloud.width} * blob.cloud.height;
+        auto& data = blob.cloud.data;
+        try {
+            data.reserve(std::max<std::uint64_t>(start.body_bytes, points * (blob.cloud.point_step + 4)));
+        } catch (const std::bad_alloc&) {
+            return std::nullopt;
+        }
+        const std::size_t in_prefix = std::min<std::uint64_t>(prefix.size() - start.body_offset, start.body_bytes);
+        data.assign(prefix.data() + start.body_offset, prefix.data() + start.body_offset + in_prefix);
+        constexpr std::size_t kStep = std::size_t{8} << 20;
+        while (data.size() < start.body_bytes) {
+            const std::size_t filled = data.size();
+            data.resize(std::min<std::uint64_t>(start.body_bytes, filled + kStep));
+            for (std::size_t at = filled; at < data.size();) {
+                const std::size_t n = read_some(data.data() + at, data.size() - at);
+                if (n == 0) {
+                    throw IoError("truncated binary body: header declares " + std::to_string(points) +
+                                  " points x " + std::to_string(blob.cloud.point_step) + " B = " +
+                                  std::to_string(start.body_bytes) + " B, " + std::to_string(at) + " B present");
+                }
+                at += n;
+            }
+        }
+        std::uint64_t trailing = prefix.size() - start.body_offset - in_prefix;
+        char sink[1 << 16];
+        for (std::size_t n; (n = read_some(sink, sizeof sink)) > 0;) {
+            trailing += n;
+            if (start.body_offset + start.body_bytes + trailing > max_bytes) {
+                over_limit();
+            }
+        }
+        if (trailing > 0) {
+            start.result.notes.push_back(std::to_string(trailing) + " trailing bytes after the binary body");
+        }
+        update_is_dense(blob);
+        return std::move(start.result);
+    }
+};
+
+InputBytes read_all(const std::string& path, std::uint64_t max_bytes) {
+    const InputReader reader(path, max_bytes);
+    InputBytes in;
+    if (reader.regular() && reader.map(in)) {
+        return in;
+    }
+    reader.read_to_end(in);  // a pipe, or a file system that cannot map
     return in;
 }
 
@@ -208,7 +302,33 @@ ReadResult parse_cloud(std::string_view bytes) {
 
 ReadResult read_cloud(const std::string& path, std::uint64_t max_bytes) {
     try {
-        const InputBytes bytes = read_all(path, max_bytes);
+        const InputReader reader(path, max_bytes);
+        // Read from the beginning in small steps: once it holds a binary PCD header, the body
+        // goes straight into the cloud (one copy of the cloud in memory, not two: a mapped file
+        // or a pipe buffer and then the cloud). Anything else is read whole and parsed.
+        InputBytes bytes;
+        reader.start_small(bytes);
+        while (bytes.view().size() <= detail::kMaxHeaderBytes && reader.read_more(bytes, false)) {
+            if (auto start = start_binary_pcd(bytes.view())) {
+                // Declared sizes beyond the limit or beyond a file's end go the general way, which
+                // reports them from the bytes actually present.
+                const std::uint64_t total = start->body_offset + start->body_bytes;
+                if (total <= max_bytes &&
+                    (!reader.regular() || total <= static_cast<std::uint64_t>(reader.st.st_size))) {
+                    if (auto r = reader.finish_binary(*start, bytes.view())) {
+                        return std::move(*r);
+                    }
+                }
+                break;
+            }
+        }
+        if (reader.regular() && bytes.view().size() < static_cast<std::uint64_t>(reader.st.st_size)) {
+            InputBytes mapped;
+            if (reader.map(mapped)) {  // the rest of a large text or PLY file: mapped, not copied
+                return parse_cloud(mapped.view());
+            }
+        }
+        reader.read_to_end(bytes);
         return parse_cloud(bytes.view());
     } catch (const IoError& e) {
         throw IoError(display_name(path) + ": " + e.what());

@@ -1,11 +1,20 @@
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <csignal>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <limits>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
 #include <pc/io/pcd.h>
+#include <pc/io/read.h>
 
 #include "support/corpus.h"
 #include "support/synthetic.h"
@@ -124,6 +133,73 @@ TEST(Pcd, BinarySizeComesFromACompleteHeaderOnly) {
     std::string lying = header;
     lying.replace(lying.find("POINTS 1000"), 11, "POINTS 7");  // WIDTH x HEIGHT says 1000
     EXPECT_FALSE(pcd_binary_size(lying));
+}
+
+/// read_cloud() of `bytes` given as a FIFO (written by another thread) or as a file: the cloud or
+/// the error message.
+std::string read_through(const std::string& bytes, bool fifo, Blob* out) {
+    char dir[] = "/tmp/pc_pcd_pipe_XXXXXX";
+    EXPECT_NE(::mkdtemp(dir), nullptr);
+    const std::string path = std::string(dir) + "/in.pcd";
+    std::thread writer;
+    if (fifo) {
+        EXPECT_EQ(::mkfifo(path.c_str(), 0600), 0);
+        writer = std::thread([&] {
+            if (std::FILE* f = std::fopen(path.c_str(), "wb")) {
+                (void)std::fwrite(bytes.data(), 1, bytes.size(), f);  // EPIPE ignored
+                std::fclose(f);
+            }
+        });
+    } else {
+        std::ofstream(path, std::ios::binary) << bytes;
+    }
+    std::string error;
+    try {
+        *out = read_cloud(path).blob;
+    } catch (const IoError& e) {
+        error = e.what();
+    }
+    if (writer.joinable()) {
+        writer.join();
+    }
+    std::remove(path.c_str());
+    ::rmdir(dir);
+    return error;
+}
+
+TEST(Pcd, ABinaryCloudReadFromAPipeOrAFileEqualsTheParsedBytes) {
+    std::signal(SIGPIPE, SIG_IGN);
+    Blob b = test::random_xyz(300000);  // 3.6 MB: several reads of the pipe
+    StringSink sink;
+    write_pcd(b, PcdEncoding::kBinary, sink);
+    const std::string whole = sink.out;
+    const std::size_t header = whole.size() - b.cloud.data.size();
+    std::string lying = whole.substr(0, header);
+    for (const char* key : {"WIDTH 300000", "POINTS 300000"}) {
+        lying.replace(lying.find(key), std::string(key).size(), std::string(key).substr(0, 6) + "90000000");
+    }
+    for (const std::string& bytes : {whole, whole + "xyz", whole.substr(0, whole.size() - 7), lying,
+                                     whole.substr(0, header - 3)}) {
+        std::string expected_error;
+        ReadResult expected;
+        try {
+            expected = parse_cloud(bytes);
+        } catch (const IoError& e) {
+            expected_error = e.what();
+        }
+        for (const bool fifo : {true, false}) {
+            Blob got;
+            const std::string error = read_through(bytes, fifo, &got);
+            if (expected_error.empty()) {
+                EXPECT_EQ(error, "") << (fifo ? "fifo" : "file");
+                EXPECT_EQ(got.cloud.data, expected.blob.cloud.data);
+                EXPECT_EQ(got.size(), expected.blob.size());
+                EXPECT_EQ(got.cloud.fields.size(), expected.blob.cloud.fields.size());
+            } else {  // the same problem, named after the input
+                EXPECT_NE(error.find(expected_error), std::string::npos) << error << " vs " << expected_error;
+            }
+        }
+    }
 }
 
 TEST(Pcd, GapsBetweenFieldsBecomePaddingFields) {

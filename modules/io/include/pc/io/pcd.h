@@ -19,6 +19,17 @@ enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 /// buffer once instead of growing it.
 [[nodiscard]] std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix);
 
+/// The start of a binary PCD read from a stream: the cloud with every header value set (fields,
+/// sizes, viewpoint, header notes, format) and no data yet, where the body starts in the input and
+/// how many bytes it has. Lets a pipe reader put the body straight into the cloud's memory.
+struct PcdStart {
+    ReadResult result;
+    std::uint64_t body_offset = 0;
+    std::uint64_t body_bytes = 0;
+};
+/// A PcdStart when `prefix` holds a complete, valid binary header (as pcd_binary_size), else nullopt.
+[[nodiscard]] std::optional<PcdStart> start_binary_pcd(std::string_view prefix);
+
 /// Writes PCD v0.7. Gaps between fields become `_` padding fields (as PCL does); a packed colour
 /// (`rgb`/`rgba` F 4) is declared U 4 with the same bits. ASCII floats use the shortest text that
 /// reads back bit-identical (NaN payloads excepted); binary_compressed omits `_` fields, as PCL.

@@ -33,10 +33,11 @@ public:
     [[nodiscard]] std::string_view view() const { return {data_, size_}; }
 
 private:
-    friend InputBytes read_all(const std::string& path, std::uint64_t max_bytes);
+    friend struct InputReader;  // read.cpp: fills the buffer
     void release();
     char* data_ = nullptr;
     std::size_t size_ = 0;
+    std::size_t capacity_ = 0;  // of a heap buffer
     bool mapped_ = false;
 };
 
