@@ -1,6 +1,8 @@
 #include <pc/features/extent.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -43,47 +45,126 @@ bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
     return ok && volume > 0;
 }
 
+/// Facet planes (outward normal n, offset o: n . p + o < 0 inside) of the convex hull of `xyz`;
+/// empty when qhull finds it degenerate.
+std::vector<std::array<double, 4>> hull_planes(std::vector<double>& xyz) {
+    std::vector<std::array<double, 4>> planes;
+    const int n = static_cast<int>(xyz.size() / 3);
+    if (n < 4) {
+        return planes;
+    }
+    FILE* sink = std::fopen("/dev/null", "w");
+    qhT qh_storage;
+    qhT* qh = &qh_storage;
+    qh_zero(qh, sink);
+    char options[] = "qhull Qt";
+    if (qh_new_qhull(qh, 3, n, xyz.data(), False, options, nullptr, sink) == 0) {
+        facetT* facet;
+        FORALLfacets {
+            planes.push_back({facet->normal[0], facet->normal[1], facet->normal[2], facet->offset});
+        }
+    }
+    qh_freeqhull(qh, !qh_ALL);
+    int curlong = 0, totlong = 0;
+    qh_memfreeshort(qh, &curlong, &totlong);
+    if (sink != nullptr) {
+        std::fclose(sink);
+    }
+    return planes;
+}
+
 }  // namespace
 
 Extent extent(const XyzView& cloud, std::span<const std::uint32_t> indices) {
     Extent e;
-    std::vector<double> xyz;
     const std::size_t count = indices.empty() ? cloud.size : indices.size();
-    xyz.reserve(3 * count);
+    const auto point = [&](std::size_t k) { return cloud[indices.empty() ? k : indices[k]]; };
+    // Two passes over the points where they are: centroid and box, then the radii.
     for (std::size_t k = 0; k < count; ++k) {
-        const pcl::PointXYZ p = cloud[indices.empty() ? k : indices[k]];
+        const pcl::PointXYZ p = point(k);
         if (!is_finite(p)) {
             continue;
         }
-        xyz.insert(xyz.end(), {double{p.x}, double{p.y}, double{p.z}});
+        const double v[3] = {p.x, p.y, p.z};
+        if (e.points == 0) {
+            e.min = {v[0], v[1], v[2]};
+            e.max = e.min;
+        }
+        ++e.points;
+        for (int a = 0; a < 3; ++a) {
+            e.centroid[a] += v[a];
+            e.min[a] = std::min(e.min[a], v[a]);
+            e.max[a] = std::max(e.max[a], v[a]);
+        }
     }
-    e.points = xyz.size() / 3;
     if (e.points == 0) {
         return e;
-    }
-    e.min = {xyz[0], xyz[1], xyz[2]};
-    e.max = e.min;
-    for (std::size_t i = 0; i < e.points; ++i) {
-        for (int a = 0; a < 3; ++a) {
-            const double v = xyz[3 * i + a];
-            e.centroid[a] += v;
-            e.min[a] = std::min(e.min[a], v);
-            e.max[a] = std::max(e.max[a], v);
-        }
     }
     for (int a = 0; a < 3; ++a) {
         e.centroid[a] /= static_cast<double>(e.points);
     }
     e.aabb_volume = (e.max[0] - e.min[0]) * (e.max[1] - e.min[1]) * (e.max[2] - e.min[2]);
     double sum = 0;
-    for (std::size_t i = 0; i < e.points; ++i) {
-        const double dx = xyz[3 * i] - e.centroid[0], dy = xyz[3 * i + 1] - e.centroid[1],
-                     dz = xyz[3 * i + 2] - e.centroid[2];
+    // The points extreme along 26 directions (axes, face and space diagonals) span a polytope
+    // inside the hull; a point well inside it is no hull vertex, so qhull gets only the others
+    // (the same hull, a fraction of the points and memory on solid clouds).
+    std::array<double, 26 * 3> extreme{};
+    std::array<double, 26> best;
+    best.fill(-std::numeric_limits<double>::infinity());
+    int dirs[26][3];
+    for (int d = 0, i = 0; i < 27; ++i) {
+        if (i != 13) {
+            dirs[d][0] = i / 9 - 1;
+            dirs[d][1] = i / 3 % 3 - 1;
+            dirs[d][2] = i % 3 - 1;
+            ++d;
+        }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+        const pcl::PointXYZ p = point(k);
+        if (!is_finite(p)) {
+            continue;
+        }
+        const double v[3] = {p.x, p.y, p.z};
+        const double dx = v[0] - e.centroid[0], dy = v[1] - e.centroid[1], dz = v[2] - e.centroid[2];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
         sum += r;
         e.max_radius = std::max(e.max_radius, r);
+        for (int d = 0; d < 26; ++d) {
+            const double s = dirs[d][0] * v[0] + dirs[d][1] * v[1] + dirs[d][2] * v[2];
+            if (s > best[d]) {
+                best[d] = s;
+                std::copy(v, v + 3, &extreme[3 * d]);
+            }
+        }
     }
     e.mean_radius = sum / static_cast<double>(e.points);
+    std::vector<double> inner(extreme.begin(), extreme.end());
+    const std::vector<std::array<double, 4>> planes = hull_planes(inner);
+    // Kept unless inside every plane by more than a margin far above the planes' rounding.
+    double scale = 0;
+    for (int a = 0; a < 3; ++a) {
+        scale = std::max({scale, std::abs(e.min[a]), std::abs(e.max[a])});
+    }
+    const double margin = 1e-9 * scale;
+    std::vector<double> xyz;
+    for (std::size_t k = 0; k < count; ++k) {
+        const pcl::PointXYZ p = point(k);
+        if (!is_finite(p)) {
+            continue;
+        }
+        const double v[3] = {p.x, p.y, p.z};
+        bool inside = !planes.empty();
+        for (const auto& pl : planes) {
+            if (pl[0] * v[0] + pl[1] * v[1] + pl[2] * v[2] + pl[3] > -margin) {
+                inside = false;
+                break;
+            }
+        }
+        if (!inside) {
+            xyz.insert(xyz.end(), {v[0], v[1], v[2]});
+        }
+    }
     e.degenerate = !convex_hull(xyz, e.hull_volume, e.hull_area);
     if (e.degenerate) {
         e.hull_volume = e.hull_area = 0;

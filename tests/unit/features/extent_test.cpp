@@ -36,6 +36,17 @@ TEST(Extent, SphereShellMeanRadiusIsTheRadius) {
     EXPECT_NEAR(e.max_radius, 1.5, 2e-2);
 }
 
+TEST(Extent, InteriorPointsDoNotChangeTheHull) {
+    // Every shell point is a hull vertex; the ball's points (radius < 1.5) never are. The hull is
+    // computed over a prefiltered subset: it must be the shell's hull to rounding.
+    const Cloud shell = test::sphere_shell(1.5f, 3000, 7);
+    const Cloud both = test::concat(test::ball({0, 0, 0}, 1.45f, 100000, 8), shell);
+    const Extent a = extent(shell), b = extent(both);
+    EXPECT_NEAR(b.hull_volume, a.hull_volume, 1e-12 * a.hull_volume);
+    EXPECT_NEAR(b.hull_area, a.hull_area, 1e-12 * a.hull_area);
+    EXPECT_EQ(b.points, 103000u);
+}
+
 TEST(Extent, DegenerateInputsHaveNoHull) {
     Cloud plane;
     for (int i = 0; i < 10; ++i) {
