@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <queue>
 #include <string>
@@ -272,6 +273,13 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
     Cloud pts;
     std::vector<std::uint32_t> index, lab;
     std::uint32_t clusters = 0;
+    std::size_t clustered = 0;  // counted first: growing the three arrays would leave 2x behind
+    for (std::uint32_t i = 0; i < n; ++i) {
+        clustered += labels[i] != 0 && is_finite(cloud[i]);
+    }
+    pts.reserve(clustered);
+    index.reserve(clustered);
+    lab.reserve(clustered);
     for (std::uint32_t i = 0; i < n; ++i) {
         if (labels[i] != 0 && is_finite(cloud[i])) {
             if (dense[labels[i]] == kNone) {
@@ -283,8 +291,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         }
     }
     const std::size_t m = pts.size();
-    CoreSplitResult r;
-    r.depth.assign(n, 0.0f);
+    CoreSplitResult r;  // r.depth is allocated once the depths are known: peak memory
     std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
     std::vector<std::uint32_t> parts(clusters, 1);
     std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
@@ -337,15 +344,24 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
                 boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
         });
-        // 2. Depth: distance to the nearest boundary point.
-        Cloud edge;
-        for (std::size_t k = 0; k < m; ++k) {
-            if (boundary[k]) {
-                edge.push_back(pts[k]);
+        // 2. Depth: distance to the nearest boundary point. The boundary points are copied once,
+        //    at their count, and freed as soon as their grid holds its own copy.
+        std::unique_ptr<search::Grid> edge_grid;
+        {
+            Cloud edge;
+            edge.reserve(static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1})));
+            for (std::size_t k = 0; k < m; ++k) {
+                if (boundary[k]) {
+                    edge.push_back(pts[k]);
+                }
+            }
+            if (!edge.empty()) {
+                edge_grid = std::make_unique<search::Grid>(edge, search::Grid::suggest_cell(edge));
+                edge_grid->release_cloud();
             }
         }
-        if (!edge.empty()) {
-            const search::Grid edges(edge, search::Grid::suggest_cell(edge));
+        if (edge_grid) {
+            const search::Grid& edges = *edge_grid;
 #pragma omp parallel
             {
                 std::vector<std::uint32_t> idx;
@@ -361,7 +377,9 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         }
         // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
         //    inside) and the fruit radius: the median over solid clusters of their greatest depth.
+        edge_grid.reset();
         std::vector<double> deepest(clusters, 0.0), inside(clusters, 0.0), size(clusters, 0.0);
+        r.depth.assign(n, 0.0f);
         for (std::size_t k = 0; k < m; ++k) {
             deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
             inside[lab[k]] += depth[k] > 0;
@@ -515,6 +533,9 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         if (!present.empty()) {
             min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
         }
+    }
+    if (r.depth.size() != n) {
+        r.depth.assign(n, 0.0f);  // no spacing: no depths
     }
     r.cluster_count = renumber_by_size(out, min_size);
     r.labels = std::move(out);
