@@ -143,7 +143,7 @@ inline void insert_candidate(std::uint32_t i, double dd, std::size_t k,
 }
 
 constexpr std::int64_t kMaxRing = 2;       // rings searched before falling back to the tree
-constexpr std::uint32_t kLeafCells = 4;  // cells per k-d tree leaf
+constexpr std::uint32_t kLeafCells = 8;  // cells per k-d tree leaf (4: 4 % more CPU and 3 MB more at 1M, kNN)
 
 }  // namespace
 
