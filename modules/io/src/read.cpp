@@ -77,22 +77,26 @@ Format detect(std::string_view bytes) {
 
 std::string display_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
-InputBytes::InputBytes(InputBytes&& other) noexcept
-    : data_(std::exchange(other.data_, nullptr)),
-      size_(std::exchange(other.size_, 0)),
-      capacity_(std::exchange(other.capacity_, 0)),
-      mapped_(std::exchange(other.mapped_, false)) {}
+namespace {
 
-InputBytes& InputBytes::operator=(InputBytes&& other) noexcept {
-    if (this != &other) {
-        release();
-        data_ = std::exchange(other.data_, nullptr);
-        size_ = std::exchange(other.size_, 0);
-        capacity_ = std::exchange(other.capacity_, 0);
-        mapped_ = std::exchange(other.mapped_, false);
-    }
-    return *this;
-}
+/// All bytes of one input, held without copying or zero-filling: a read-only mapping of a regular
+/// file, or a heap buffer filled from a pipe.
+class InputBytes {
+public:
+    InputBytes() = default;
+    InputBytes(const InputBytes&) = delete;
+    InputBytes& operator=(const InputBytes&) = delete;
+    ~InputBytes();
+    [[nodiscard]] std::string_view view() const { return {data_, size_}; }
+
+private:
+    friend struct InputReader;  // fills the buffer
+    void release();
+    char* data_ = nullptr;
+    std::size_t size_ = 0;
+    std::size_t capacity_ = 0;  // of a heap buffer
+    bool mapped_ = false;
+};
 
 InputBytes::~InputBytes() { release(); }
 
@@ -281,15 +285,7 @@ struct InputReader {
     }
 };
 
-InputBytes read_all(const std::string& path, std::uint64_t max_bytes) {
-    const InputReader reader(path, max_bytes);
-    InputBytes in;
-    if (reader.regular() && reader.map(in)) {
-        return in;
-    }
-    reader.read_to_end(in);  // a pipe, or a file system that cannot map
-    return in;
-}
+}  // namespace
 
 ReadResult parse_cloud(std::string_view bytes) {
     switch (detect(bytes)) {

@@ -20,38 +20,15 @@ struct ReadResult {
     std::vector<std::string> notes;
 };
 
-/// All bytes of one input, held without copying or zero-filling: a read-only mapping of a regular
-/// file, or a heap buffer filled from a pipe. Move-only.
-class InputBytes {
-public:
-    InputBytes() = default;
-    InputBytes(InputBytes&& other) noexcept;
-    InputBytes& operator=(InputBytes&& other) noexcept;
-    InputBytes(const InputBytes&) = delete;
-    InputBytes& operator=(const InputBytes&) = delete;
-    ~InputBytes();
-    [[nodiscard]] std::string_view view() const { return {data_, size_}; }
-
-private:
-    friend struct InputReader;  // read.cpp: fills the buffer
-    void release();
-    char* data_ = nullptr;
-    std::size_t size_ = 0;
-    std::size_t capacity_ = 0;  // of a heap buffer
-    bool mapped_ = false;
-};
-
-/// All bytes of `path` ("-" = standard input). Rejects directories and block devices up front,
-/// and inputs above `max_bytes`. Messages do not name the input; the caller adds it.
-/// Throws pc::IoError.
-[[nodiscard]] InputBytes read_all(const std::string& path, std::uint64_t max_bytes);
-
 /// Parses PCD (ascii, binary, binary_compressed), PLY (ascii, binary LE/BE) or XYZ text,
 /// recognised by content. Every header value is checked against the bytes present before
 /// anything is allocated. Throws pc::IoError with the problem and its numbers.
 [[nodiscard]] ReadResult parse_cloud(std::string_view bytes);
 
-/// read_all + parse_cloud, with errors prefixed by the input's name (`<stdin>` for "-").
+/// Reads `path` ("-" = standard input) and parses it as parse_cloud() does, with errors prefixed
+/// by the input's name (`<stdin>` for "-"). Directories and block devices are refused up front, and
+/// inputs above `max_bytes`. A binary PCD's body is read straight into the cloud (one copy in
+/// memory); anything else is mapped (a regular file) or buffered (a pipe), then parsed.
 [[nodiscard]] ReadResult read_cloud(const std::string& path,
                                     std::uint64_t max_bytes = kDefaultMaxInputBytes);
 
