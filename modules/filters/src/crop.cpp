@@ -14,11 +14,11 @@ void CropParams::validate() const {
     }
 }
 
-CropResult crop(const Cloud& cloud, const CropParams& params) {
+CropResult crop(const XyzView& cloud, const CropParams& params) {
     params.validate();
     CropResult r;
-    for (std::uint32_t i = 0; i < cloud.size(); ++i) {
-        const auto& p = cloud[i];
+    for (std::uint32_t i = 0; i < cloud.size; ++i) {
+        const pcl::PointXYZ p = cloud[i];
         const double v[3] = {p.x, p.y, p.z};
         bool inside = is_finite(p);
         for (int a = 0; a < 3 && inside; ++a) {

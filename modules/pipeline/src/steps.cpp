@@ -31,7 +31,7 @@ Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
 }
 
 Step apply_crop(io::Blob in, const filters::CropParams& p) {
-    const auto kept = filters::crop(io::xyz(in), p).kept;
+    const auto kept = filters::crop(io::XyzPoints(in).view(), p).kept;
     std::string note = kept_note("crop", kept.size(), in.size());
     io::keep_points(in, kept);
     return {std::move(in), std::move(note)};

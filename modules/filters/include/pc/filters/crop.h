@@ -23,6 +23,9 @@ struct CropResult {
 
 /// Keeps points with min <= p <= max on every axis. Non-finite points are outside the box
 /// (dropped, or kept with invert). O(n).
-[[nodiscard]] CropResult crop(const Cloud& cloud, const CropParams& params);
+[[nodiscard]] CropResult crop(const XyzView& points, const CropParams& params);
+[[nodiscard]] inline CropResult crop(const Cloud& cloud, const CropParams& params) {
+    return crop(XyzView(cloud), params);
+}
 
 }  // namespace pc::filters
