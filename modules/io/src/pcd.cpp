@@ -526,11 +526,6 @@ std::optional<PcdStart> start_binary_pcd(std::string_view prefix) {
     }
 }
 
-std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix) {
-    const auto s = start_binary_pcd(prefix);
-    return s ? std::optional<std::uint64_t>(s->body_offset + s->body_bytes) : std::nullopt;
-}
-
 ReadResult parse_pcd(std::string_view bytes) {
     ReadResult r;
     const Header h = parse_header(bytes);

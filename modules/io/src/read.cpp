@@ -131,7 +131,7 @@ void prefault(void* p, std::size_t n) {
 }
 
 /// One opened input: the file descriptor (closed at the end unless stdin), its stat, and the
-/// reading steps shared by read_all() and read_cloud().
+/// reading steps of read_cloud().
 struct InputReader {
     int fd = -1;
     bool own = false;
@@ -203,18 +203,14 @@ struct InputReader {
         return true;
     }
 
-    /// One more read into the growing heap buffer `in`; false at the end of the input. While the
-    /// buffer may still be a header, a binary PCD's header sizes it once (plus one byte to see the
-    /// end) instead of doubling and copying; only a hint: on failure it grows as usual.
-    bool read_more(InputBytes& in, bool size_from_header = true) const {
-        if (in.size_ == in.capacity_ || in.data_ == nullptr) {
-            std::size_t capacity = regular() ? static_cast<std::size_t>(st.st_size) + 1 : 1 << 20;
-            if (in.data_ != nullptr) {
-                if (in.size_ >= max_bytes) {
-                    over_limit();
-                }
-                capacity = static_cast<std::size_t>(std::min<std::uint64_t>(in.capacity_ * 2, max_bytes + 1));
+    /// One more read into the heap buffer `in` (started by start_small), doubled when full;
+    /// false at the end of the input. (A binary PCD's body never comes here: finish_binary.)
+    bool read_more(InputBytes& in) const {
+        if (in.size_ == in.capacity_) {
+            if (in.size_ >= max_bytes) {
+                over_limit();
             }
+            const auto capacity = static_cast<std::size_t>(std::min<std::uint64_t>(in.capacity_ * 2, max_bytes + 1));
             char* grown = static_cast<char*>(std::realloc(in.data_, capacity));
             if (grown == nullptr) {
                 throw std::bad_alloc();
@@ -226,17 +222,7 @@ struct InputReader {
         if (n == 0) {
             return false;
         }
-        const bool was_small = in.size_ <= detail::kMaxHeaderBytes;
         in.size_ += n;
-        if (was_small && size_from_header) {
-            if (const auto total = pcd_binary_size({in.data_, in.size_});
-                total && *total + 1 > in.capacity_ && *total < max_bytes) {
-                if (char* exact = static_cast<char*>(std::realloc(in.data_, *total + 1))) {
-                    in.data_ = exact;
-                    in.capacity_ = *total + 1;
-                }
-            }
-        }
         return true;
     }
 
@@ -323,7 +309,7 @@ ReadResult read_cloud(const std::string& path, std::uint64_t max_bytes) {
         // or a pipe buffer and then the cloud). Anything else is read whole and parsed.
         InputBytes bytes;
         reader.start_small(bytes);
-        while (bytes.view().size() <= detail::kMaxHeaderBytes && reader.read_more(bytes, false)) {
+        while (bytes.view().size() <= detail::kMaxHeaderBytes && reader.read_more(bytes)) {
             if (auto start = start_binary_pcd(bytes.view())) {
                 // Declared sizes beyond the limit or beyond a file's end go the general way, which
                 // reports them from the bytes actually present.

@@ -120,19 +120,23 @@ INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
                                                                       : std::string("Compressed");
                          });
 
-TEST(Pcd, BinarySizeComesFromACompleteHeaderOnly) {
+TEST(Pcd, BinaryStartComesFromACompleteHeaderOnly) {
+    const auto total = [](std::string_view prefix) -> std::optional<std::uint64_t> {
+        const auto s = start_binary_pcd(prefix);
+        return s ? std::optional<std::uint64_t>(s->body_offset + s->body_bytes) : std::nullopt;
+    };
     const std::string header =
         "VERSION .7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F U\nCOUNT 1 1 1 1\n"
         "WIDTH 1000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1000\nDATA binary\n";
-    EXPECT_EQ(pcd_binary_size(header), header.size() + 1000u * 16u);
-    EXPECT_EQ(pcd_binary_size(header + std::string(100, '\0')), header.size() + 1000u * 16u);
-    EXPECT_FALSE(pcd_binary_size(header.substr(0, header.size() - 8)));  // DATA line not yet in
+    EXPECT_EQ(total(header), header.size() + 1000u * 16u);
+    EXPECT_EQ(total(header + std::string(100, '\0')), header.size() + 1000u * 16u);
+    EXPECT_FALSE(total(header.substr(0, header.size() - 8)));  // DATA line not yet in
     std::string ascii = header;
     ascii.replace(ascii.find("DATA binary"), 11, "DATA ascii");
-    EXPECT_FALSE(pcd_binary_size(ascii));
+    EXPECT_FALSE(total(ascii));
     std::string lying = header;
     lying.replace(lying.find("POINTS 1000"), 11, "POINTS 7");  // WIDTH x HEIGHT says 1000
-    EXPECT_FALSE(pcd_binary_size(lying));
+    EXPECT_FALSE(total(lying));
 }
 
 /// read_cloud() of `bytes` given as a FIFO (written by another thread) or as a file: the cloud or

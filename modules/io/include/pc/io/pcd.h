@@ -13,12 +13,6 @@ enum class PcdEncoding { kAscii, kBinary, kBinaryCompressed };
 /// Parses a PCD v0.5-0.7 file held in memory (see docs/formats.md for what is accepted).
 [[nodiscard]] ReadResult parse_pcd(std::string_view bytes);
 
-/// The total size of a binary PCD whose beginning is `prefix` (header + POINTS x point size), when
-/// the prefix holds a complete, valid binary header; nullopt otherwise (any other encoding, a
-/// header not yet complete, or one that parse_pcd would refuse). Lets a pipe reader size its
-/// buffer once instead of growing it.
-[[nodiscard]] std::optional<std::uint64_t> pcd_binary_size(std::string_view prefix);
-
 /// The start of a binary PCD read from a stream: the cloud with every header value set (fields,
 /// sizes, viewpoint, header notes, format) and no data yet, where the body starts in the input and
 /// how many bytes it has. Lets a pipe reader put the body straight into the cloud's memory.
@@ -27,7 +21,8 @@ struct PcdStart {
     std::uint64_t body_offset = 0;
     std::uint64_t body_bytes = 0;
 };
-/// A PcdStart when `prefix` holds a complete, valid binary header (as pcd_binary_size), else nullopt.
+/// A PcdStart when `prefix` holds a complete, valid binary header; nullopt otherwise (any other
+/// encoding, a header not yet complete, or one that parse_pcd would refuse).
 [[nodiscard]] std::optional<PcdStart> start_binary_pcd(std::string_view prefix);
 
 /// Writes PCD v0.7. Gaps between fields become `_` padding fields (as PCL does); a packed colour
