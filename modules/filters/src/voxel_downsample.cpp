@@ -1,6 +1,7 @@
 #include <pc/filters/voxel_downsample.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -39,14 +40,6 @@ std::uint32_t number_voxels(const std::vector<Keyed>& keyed, std::vector<std::ui
     return static_cast<std::uint32_t>(firsts.size());
 }
 
-int bits_for(std::int64_t max_value) {
-    int b = 0;
-    while (b < 63 && (std::int64_t{1} << b) <= max_value) {
-        ++b;
-    }
-    return b;
-}
-
 }  // namespace
 
 VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
@@ -76,7 +69,7 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
     };
     int bits[3] = {0, 0, 0};
     for (int a = 0; a < 3 && finite > 0; ++a) {
-        bits[a] = bits_for(cell(hi[a], a));
+        bits[a] = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(cell(hi[a], a))));  // cell(hi) >= 0
     }
     const auto sorted = [&](auto key_of) {
         using Key = decltype(key_of(pcl::PointXYZ{}));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <climits>
 #include <cmath>
 #include <limits>
@@ -229,15 +230,6 @@ void build_table(std::size_t count, KeyOf key_of, std::vector<std::uint32_t>& ta
     }
 }
 
-int bit_width(std::int64_t v) {
-    int b = 0;
-    while (v > 0) {
-        ++b;
-        v >>= 1;
-    }
-    return b;
-}
-
 }  // namespace
 
 Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
@@ -254,7 +246,7 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
     }
     for (int a = 0; a < 3 && b.n; ++a) {
         dims_[a] = coord(static_cast<float>(b.hi[a]), a) + 1;
-        bits_[a] = bit_width(dims_[a] - 1);
+        bits_[a] = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(dims_[a] - 1)));
     }
     order_.resize(b.n);
     const auto sort_points = [&](auto zero) {
