@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <map>
 #include <numbers>
+#include <string>
 
 #include <pc/core/error.h>
 
@@ -18,9 +19,11 @@ namespace pc::features {
 
 namespace {
 
-/// Volume and area of the convex hull of `xyz` (n x 3, row-major); false when qhull finds the
-/// input degenerate (flat or too few points).
-bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
+/// Runs qhull with `options` on `xyz` (n x 3, row-major) and, when it succeeds, calls read(qh)
+/// before qhull's memory is freed; false when qhull finds the input degenerate (flat or too few
+/// points).
+template <class Read>
+bool with_qhull(std::vector<double>& xyz, const char* options, Read&& read) {
     const int n = static_cast<int>(xyz.size() / 3);
     if (n < 4) {
         return false;
@@ -29,12 +32,10 @@ bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
     qhT qh_storage;
     qhT* qh = &qh_storage;
     qh_zero(qh, sink);
-    char options[] = "qhull Qt FA";
-    const int status = qh_new_qhull(qh, 3, n, xyz.data(), False, options, nullptr, sink);
-    const bool ok = status == 0;
+    std::string command = options;  // qh_new_qhull takes a writable string
+    const bool ok = qh_new_qhull(qh, 3, n, xyz.data(), False, command.data(), nullptr, sink) == 0;
     if (ok) {
-        volume = qh->totvol;
-        area = qh->totarea;
+        read(qh);
     }
     qh_freeqhull(qh, !qh_ALL);
     int curlong = 0, totlong = 0;
@@ -42,6 +43,15 @@ bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
     if (sink != nullptr) {
         std::fclose(sink);
     }
+    return ok;
+}
+
+/// Volume and area of the convex hull of `xyz`; false when degenerate.
+bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
+    const bool ok = with_qhull(xyz, "qhull Qt FA", [&](qhT* qh) {
+        volume = qh->totvol;
+        area = qh->totarea;
+    });
     return ok && volume > 0;
 }
 
@@ -49,27 +59,12 @@ bool convex_hull(std::vector<double>& xyz, double& volume, double& area) {
 /// empty when qhull finds it degenerate.
 std::vector<std::array<double, 4>> hull_planes(std::vector<double>& xyz) {
     std::vector<std::array<double, 4>> planes;
-    const int n = static_cast<int>(xyz.size() / 3);
-    if (n < 4) {
-        return planes;
-    }
-    FILE* sink = std::fopen("/dev/null", "w");
-    qhT qh_storage;
-    qhT* qh = &qh_storage;
-    qh_zero(qh, sink);
-    char options[] = "qhull Qt";
-    if (qh_new_qhull(qh, 3, n, xyz.data(), False, options, nullptr, sink) == 0) {
+    with_qhull(xyz, "qhull Qt", [&](qhT* qh) {
         facetT* facet;
         FORALLfacets {
             planes.push_back({facet->normal[0], facet->normal[1], facet->normal[2], facet->offset});
         }
-    }
-    qh_freeqhull(qh, !qh_ALL);
-    int curlong = 0, totlong = 0;
-    qh_memfreeshort(qh, &curlong, &totlong);
-    if (sink != nullptr) {
-        std::fclose(sink);
-    }
+    });
     return planes;
 }
 
