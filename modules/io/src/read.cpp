@@ -253,7 +253,7 @@ struct InputReader {
         const std::uint64_t points = std::uint64_t{blob.cloud.width} * blob.cloud.height;
         auto& data = blob.cloud.data;
         try {
-            data.reserve(std::max<std::uint64_t>(start.body_bytes, points * (blob.cloud.point_step + 4)));
+            reserve_points(blob, points);  // the body (points x point_step) and room for a label
         } catch (const std::bad_alloc&) {
             return std::nullopt;
         }
