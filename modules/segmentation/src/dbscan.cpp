@@ -14,6 +14,9 @@ namespace pc::segmentation {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+/// Marks a cluster root's forest entry once it holds the cluster's compact id (step 4): sorted
+/// positions must stay below it.
+constexpr std::uint32_t kTag = 0x80000000u;
 
 /// Lock-free union-find (links the larger root under the smaller with CAS, path halving).
 struct ConcurrentForest {
@@ -154,7 +157,7 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
     DbscanResult r;
     const double eps2 = params.eps * params.eps;
     const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
-    if (m >= 0x80000000u) {
+    if (m >= kTag) {
         throw InvalidArgument("dbscan: at most 2^31 - 1 finite points, got " + std::to_string(m));
     }
     std::vector<std::uint8_t> core(m, 0);
@@ -280,7 +283,6 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
     // 4. Number clusters by decreasing size, ties by smallest original member index. Components
     //    get compact ids first, written into their roots' own entries with a tag bit (no entry
     //    names a root's entry as its parent any more): no per-point table beyond the forest.
-    constexpr std::uint32_t kTag = 0x80000000u;  // m < 2^31: checked above
     std::vector<std::uint32_t> size, first;
     const auto id_of_root = [&](std::uint32_t root) {
         std::uint32_t v = parent[root].load(std::memory_order_relaxed);
