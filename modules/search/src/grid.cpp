@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -18,27 +19,26 @@ namespace {
 
 constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis in a 63-bit key
 
-/// LSD radix sort of (key, index) pairs, 12 bits per pass, skipping passes where all digits agree.
-/// Keys are 32-bit when the cell key fits (nearly always): half the bytes to move and hold.
-/// `k2` and `i2` are scratch of the same sizes, owned by the caller so that it decides when they
-/// are freed.
+/// LSD radix sort of n (key, index) pairs, 12 bits per pass, skipping passes where all digits
+/// agree. Keys are 32-bit when the cell key fits (nearly always): half the bytes to move and hold.
+/// `k2` and `i2` are scratch of n entries each; the sorted pairs end in either array of each
+/// pair, which is returned.
 template <class Key>
-void radix_sort(std::vector<Key>& keys, std::vector<std::uint32_t>& idx, std::vector<Key>& k2,
-                std::vector<std::uint32_t>& i2) {
-    const std::size_t n = keys.size();
+std::pair<Key*, std::uint32_t*> radix_sort(Key* keys, std::uint32_t* idx, Key* k2, std::uint32_t* i2, std::size_t n) {
     Key all_or = 0, all_and = static_cast<Key>(~Key{0});
-    for (auto k : keys) {
-        all_or |= k;
-        all_and &= k;
+    for (std::size_t i = 0; i < n; ++i) {
+        all_or |= keys[i];
+        all_and &= keys[i];
     }
     const Key varying = all_or ^ all_and;
+    std::vector<std::size_t> count(4097);
     for (int shift = 0; shift < static_cast<int>(8 * sizeof(Key)); shift += 12) {
         if (((varying >> shift) & 0xfff) == 0) {
             continue;
         }
-        std::vector<std::size_t> count(4097, 0);
-        for (auto k : keys) {
-            ++count[((k >> shift) & 0xfff) + 1];
+        std::fill(count.begin(), count.end(), 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            ++count[((keys[i] >> shift) & 0xfff) + 1];
         }
         for (int b = 0; b < 4096; ++b) {
             count[b + 1] += count[b];
@@ -48,10 +48,15 @@ void radix_sort(std::vector<Key>& keys, std::vector<std::uint32_t>& idx, std::ve
             k2[at] = keys[i];
             i2[at] = idx[i];
         }
-        keys.swap(k2);
-        idx.swap(i2);
+        std::swap(keys, k2);
+        std::swap(idx, i2);
     }
+    return {keys, idx};
 }
+
+/// A 32-bit word that may alias a float: the sort's keys and scratch live in the coordinates'
+/// storage until the coordinates are written there.
+using Word = std::uint32_t __attribute__((may_alias));
 
 struct Bounds {
     double lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
@@ -249,15 +254,17 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
         bits_[a] = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(dims_[a] - 1)));
     }
     order_.resize(b.n);
-    const auto sort_points = [&](auto zero) {
-        using Key = decltype(zero);
-        std::vector<Key> keys(b.n);
-        if (b.n == cloud.size) {  // all finite (the usual case): in parallel
-            const auto n = static_cast<std::int64_t>(b.n);
+    const std::size_t n = b.n;
+    // 1. Cell keys, sorted with the points' order. 32-bit keys: keys and sort scratch (3 x 4
+    //    bytes per point) live in xyz_'s storage (3 floats per point), allocated once here: the
+    //    grid's build needs no block beside its own arrays. 64-bit keys: their own scratch.
+    const auto sort_points = [&](auto* keys, auto* k2, std::uint32_t* i2) {
+        if (n == cloud.size) {  // all finite (the usual case): in parallel
+            const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
-            for (std::int64_t i = 0; i < n; ++i) {
+            for (std::int64_t i = 0; i < count; ++i) {
                 const pcl::PointXYZ p = cloud[static_cast<std::size_t>(i)];
-                keys[static_cast<std::size_t>(i)] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                keys[i] = static_cast<std::remove_reference_t<decltype(*keys)>>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
                 order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
             }
         } else {
@@ -265,29 +272,29 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
             for (std::uint32_t i = 0; i < cloud.size; ++i) {
                 const pcl::PointXYZ p = cloud[i];
                 if (is_finite(p)) {
-                    keys[at] = static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                    keys[at] = static_cast<std::remove_reference_t<decltype(*keys)>>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
                     order_[at++] = i;
                 }
             }
         }
-        // The sort's scratch lives until the cells are built, then keys and scratch are freed
-        // together: one free block as large as xyz_ (32-bit keys), which xyz_ then reuses.
-        std::vector<Key> k2(b.n);
-        std::vector<std::uint32_t> i2(b.n);
-        radix_sort(keys, order_, k2, i2);
+        const auto [sorted, idx] = radix_sort(keys, order_.data(), k2, i2, n);
+        if (idx != order_.data()) {
+            std::copy(idx, idx + n, order_.begin());
+        }
+        // 2. Cells (runs of equal keys) and rows (runs of equal x, y), reserved exactly.
         std::size_t cells = 0, rows = 0;
-        for (std::size_t s = 0; s < keys.size(); ++s) {
-            if (s == 0 || keys[s] != keys[s - 1]) {
+        for (std::size_t s = 0; s < n; ++s) {
+            if (s == 0 || sorted[s] != sorted[s - 1]) {
                 ++cells;
-                rows += s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2]);
+                rows += s == 0 || (sorted[s] >> bits_[2]) != (sorted[s - 1] >> bits_[2]);
             }
         }
         cells_.reserve(cells);
         row_begin_.reserve(rows + 1);
-        for (std::size_t s = 0; s < order_.size(); ++s) {
-            if (s == 0 || keys[s] != keys[s - 1]) {
-                cells_.push_back({keys[s], static_cast<std::uint32_t>(s), 0});
-                if (s == 0 || (keys[s] >> bits_[2]) != (keys[s - 1] >> bits_[2])) {
+        for (std::size_t s = 0; s < n; ++s) {
+            if (s == 0 || sorted[s] != sorted[s - 1]) {
+                cells_.push_back({sorted[s], static_cast<std::uint32_t>(s), 0});
+                if (s == 0 || (sorted[s] >> bits_[2]) != (sorted[s - 1] >> bits_[2])) {
                     row_begin_.push_back(static_cast<std::uint32_t>(cells_.size() - 1));
                 }
             }
@@ -295,14 +302,19 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
         }
     };
     if (bits_[0] + bits_[1] + bits_[2] <= 32) {
-        sort_points(std::uint32_t{0});
+        xyz_.resize(3 * n);
+        Word* words = reinterpret_cast<Word*>(xyz_.data());
+        sort_points(words, words + n, words + 2 * n);
     } else {
-        sort_points(std::uint64_t{0});
+        std::vector<std::uint64_t> keys(2 * n);
+        std::vector<std::uint32_t> i2(n);
+        sort_points(keys.data(), keys.data() + n, i2.data());
+        std::vector<std::uint64_t>().swap(keys);
+        std::vector<std::uint32_t>().swap(i2);
+        xyz_.resize(3 * n);
     }
-    // Allocated once the sort's scratch is free: that block (as large as xyz_ with 32-bit keys)
-    // is reused instead of adding to the peak.
-    xyz_.resize(3 * order_.size());
-    const auto m = static_cast<std::int64_t>(order_.size());
+    // 3. The coordinates in sorted order, over the keys (no longer read).
+    const auto m = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
     for (std::int64_t s = 0; s < m; ++s) {
         const pcl::PointXYZ p = cloud[order_[static_cast<std::size_t>(s)]];
@@ -822,7 +834,7 @@ void Grid::all_knn(std::size_t k,
 }
 
 double median_spacing(const XyzView& cloud, std::size_t samples) {
-    const Grid grid(cloud, Grid::suggest_cell(cloud));
+    const Grid grid(cloud, Grid::suggest_cell(cloud, 16));
     if (grid.finite_count() < 2) {
         return 0;
     }
