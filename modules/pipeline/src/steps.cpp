@@ -103,9 +103,9 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
 }
 
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
-    const auto labels = io::labels(in, "label");
+    // The labels' copy is handed over: the cores rule reuses its storage.
     const segmentation::RecursiveSplitResult r =
-        segmentation::recursive_split(io::XyzPoints(in).view(), labels, p);
+        segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
     const std::string how = p.rule == segmentation::SplitRule::kCores
                                 ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
                                       ", estimated fruit radius " + format_number(r.fruit_radius) +

@@ -5,6 +5,7 @@
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <queue>
 #include <string>
 #include <tuple>
@@ -22,6 +23,11 @@ namespace pc::segmentation {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+/// Step 4's tags in a core root's forest entry: the entry holds the core's size or, once numbered,
+/// its part number (kValue bits; clustered points are counted below kNumbered).
+constexpr std::uint32_t kRoot = 0x80000000u;
+constexpr std::uint32_t kNumbered = 0x40000000u;
+constexpr std::uint32_t kValue = kNumbered - 1;
 
 std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     while (parent[x] != x) {
@@ -36,7 +42,7 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
 /// patches that are spherical (RMS < 0.1 × radius) and curved (radius < 40 s). Also returns the
 /// points of a typical fruit: half of its sphere at the patches' median areal density. {0, 0} when
 /// fewer than 20 patches qualify.
-std::pair<double, double> radius_from_patches(const Cloud& pts, const std::vector<std::uint32_t>& lab,
+std::pair<double, double> radius_from_patches(const XyzView& pts, const std::vector<std::uint32_t>& lab,
                                               const std::vector<std::vector<std::uint32_t>>& members, double s) {
     Cloud surface;
     std::vector<std::uint32_t> owner;
@@ -78,12 +84,12 @@ std::pair<double, double> radius_from_patches(const Cloud& pts, const std::vecto
 }
 
 /// Hollow clusters cut into spheres; see core_split().
-void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& lab, const std::vector<std::uint8_t>& hollow,
+void split_hollow_clusters(const XyzView& pts, const std::vector<std::uint32_t>& lab, const std::vector<std::uint8_t>& hollow,
                            const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
                            std::vector<std::uint32_t>& parts) {
     const auto clusters = static_cast<std::uint32_t>(hollow.size());
     std::vector<std::vector<std::uint32_t>> members(clusters);
-    for (std::size_t k = 0; k < pts.size(); ++k) {
+    for (std::size_t k = 0; k < pts.size; ++k) {
         if (hollow[lab[k]]) {
             members[lab[k]].push_back(static_cast<std::uint32_t>(k));
         }
@@ -128,7 +134,7 @@ void split_hollow_clusters(const Cloud& pts, const std::vector<std::uint32_t>& l
 /// Parts whose points lie on one sphere of about the fruit radius are pieces of one fruit that
 /// occlusion cut apart: parts whose fitted spheres (RMS < 0.15 × radius, radius within
 /// 0.75..1.33 R) have centres closer than R / 2 are joined. `labels` are 1..count (0 = noise).
-void merge_hollow_fragments(const Cloud& pts, std::vector<std::uint32_t>& labels, std::uint32_t count,
+void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labels, std::uint32_t count,
                             double fruit_radius, std::uint32_t& merged) {
     std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
     for (std::size_t k = 0; k < labels.size(); ++k) {
@@ -177,7 +183,7 @@ void merge_hollow_fragments(const Cloud& pts, std::vector<std::uint32_t>& labels
 /// Solid pieces of one fruit that poor masks cut apart: two parts (with some depth) are joined
 /// while every point of their union lies within `extent` of the union's centroid (they fit in
 /// one fruit), nearest centroids first. Whole touching fruit never fit: their union spans 2 R.
-void merge_solid_fragments(const Cloud& pts, const std::vector<float>& depth, std::vector<std::uint32_t>& labels,
+void merge_solid_fragments(const XyzView& pts, const std::vector<float>& depth, std::vector<std::uint32_t>& labels,
                            std::uint32_t count, double extent, std::uint32_t& merged) {
     std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
     std::vector<std::uint8_t> solid(std::size_t{count} + 1, 0);
@@ -189,7 +195,8 @@ void merge_solid_fragments(const Cloud& pts, const std::vector<float>& depth, st
     std::vector<std::uint32_t> order;
     for (std::uint32_t l = 1; l < members.size(); ++l) {
         for (auto k : members[l]) {
-            sum[l] += Eigen::Vector3d(pts[k].x, pts[k].y, pts[k].z);
+            const pcl::PointXYZ p = pts[k];
+            sum[l] += Eigen::Vector3d(p.x, p.y, p.z);
         }
         if (solid[l] && !members[l].empty()) {
             order.push_back(l);
@@ -223,7 +230,8 @@ void merge_solid_fragments(const Cloud& pts, const std::vector<float>& depth, st
         bool fits = true;
         for (const auto* set : {&members[a], &members[b]}) {
             for (auto k : *set) {
-                fits = fits && (Eigen::Vector3d(pts[k].x, pts[k].y, pts[k].z) - c).squaredNorm() <= extent * extent;
+                const pcl::PointXYZ p = pts[k];
+                fits = fits && (Eigen::Vector3d(p.x, p.y, p.z) - c).squaredNorm() <= extent * extent;
             }
         }
         if (fits) {
@@ -258,52 +266,70 @@ void CoreSplitParams::validate() const {
 }
 
 CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> labels, const CoreSplitParams& params) {
+    return core_split(cloud, std::vector<std::uint32_t>(labels.begin(), labels.end()), params);
+}
+
+CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
     params.validate();
     const std::size_t n = cloud.size;
     if (labels.size() != n) {
         throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
                               std::to_string(labels.size()));
     }
-    // The clustered points, compacted: pts[k] is cloud[index[k]] with cluster lab[k] (dense 0..C-1).
+    // The clustered points, compacted: pts[k] is cloud[index[k]] (a view, no copy of the
+    // coordinates) with cluster lab[k] (dense 0..C-1), written over the labels (k <= i).
     std::uint32_t max_label = 0;
-    for (auto l : labels) {
-        max_label = std::max(max_label, l);
-    }
-    std::vector<std::uint32_t> dense(std::size_t{max_label} + 1, kNone);
-    Cloud pts;
-    std::vector<std::uint32_t> index, lab;
-    std::uint32_t clusters = 0;
-    std::size_t clustered = 0;  // counted first: growing the three arrays would leave 2x behind
+    std::size_t clustered = 0;  // counted first: growing the index would leave 2x behind
     for (std::uint32_t i = 0; i < n; ++i) {
+        max_label = std::max(max_label, labels[i]);
         clustered += labels[i] != 0 && is_finite(cloud[i]);
     }
-    pts.reserve(clustered);
+    std::vector<std::uint32_t> dense(std::size_t{max_label} + 1, kNone);
+    std::vector<std::uint32_t> index, lab = std::move(labels);
+    std::uint32_t clusters = 0;
     index.reserve(clustered);
-    lab.reserve(clustered);
     for (std::uint32_t i = 0; i < n; ++i) {
-        if (labels[i] != 0 && is_finite(cloud[i])) {
-            if (dense[labels[i]] == kNone) {
-                dense[labels[i]] = clusters++;
+        const std::uint32_t l = lab[i];
+        if (l != 0 && is_finite(cloud[i])) {
+            if (dense[l] == kNone) {
+                dense[l] = clusters++;
             }
-            pts.push_back(cloud[i]);
+            lab[index.size()] = dense[l];
             index.push_back(i);
-            lab.push_back(dense[labels[i]]);
         }
     }
-    const std::size_t m = pts.size();
-    CoreSplitResult r;  // r.depth is allocated once the depths are known: peak memory
-    std::vector<std::uint32_t> part(m, 0);  // part within the cluster, 0-based
+    lab.resize(index.size());
+    // A view that is itself a subset: its positions are translated once (the only extra copy).
+    std::vector<std::uint32_t> through;
+    XyzView base = cloud;
+    if (cloud.index != nullptr) {
+        through.reserve(index.size());
+        for (auto i : index) {
+            through.push_back(cloud.index[i]);
+        }
+        base.index = nullptr;
+    }
+    const XyzView pts = base.subset(cloud.index != nullptr ? through : index);
+    const std::size_t m = pts.size;
+    if (m > kValue) {
+        throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(m));
+    }
+    CoreSplitResult r;  // r.depth is allocated at the end, once the working arrays are freed
+    std::vector<std::uint32_t> part;  // part within the cluster, 0-based (the flood's result)
     std::vector<std::uint32_t> parts(clusters, 1);
     std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
     std::vector<float> depth(m, 0.0f);  // per compacted point: distance to the nearest boundary point
     r.spacing = search::median_spacing(pts);
     if (r.spacing > 0) {
         const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
-        const search::Grid grid(pts, std::max(rb, link));
+        const double cell = std::max(rb, link);
         // 1. Boundary: neighbours of the same cluster lie mostly to one side. Swept cell by cell:
-        //    the neighbour cells are found once per cell, not once per point.
+        //    the neighbour cells are found once per cell, not once per point. The grid is built
+        //    again for step 4: freed meanwhile, it does not add to the boundary grid's peak.
         std::vector<std::uint8_t> boundary(m, 0);
         const double rb2 = rb * rb;
+        std::optional<search::Grid> near(std::in_place, pts, cell);
+        const search::Grid& grid = *near;
         grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
             for (std::uint32_t sp = grid.cell_begin(c); sp < grid.cell_end(c); ++sp) {
                 const std::uint32_t k = grid.index_of(sp);
@@ -344,19 +370,21 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
                 boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
         });
-        // 2. Depth: distance to the nearest boundary point. The boundary points are copied once,
-        //    at their count, and freed as soon as their grid holds its own copy.
+        near.reset();
+        // 2. Depth: distance to the nearest boundary point, from a grid over the boundary points
+        //    (a view of them: their positions only).
         std::unique_ptr<search::Grid> edge_grid;
         {
-            Cloud edge;
-            edge.reserve(static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1})));
+            std::vector<std::uint32_t> edge_index;  // positions in `base`: a view, no copy
+            edge_index.reserve(static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1})));
             for (std::size_t k = 0; k < m; ++k) {
                 if (boundary[k]) {
-                    edge.push_back(pts[k]);
+                    edge_index.push_back(pts.index[k]);
                 }
             }
-            if (!edge.empty()) {
-                edge_grid = std::make_unique<search::Grid>(edge, search::Grid::suggest_cell(edge));
+            if (!edge_index.empty()) {
+                const XyzView edge = base.subset(edge_index);
+                edge_grid = std::make_unique<search::Grid>(edge, search::Grid::suggest_cell(edge, 16));
                 edge_grid->release_cloud();
             }
         }
@@ -378,13 +406,12 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
         //    inside) and the fruit radius: the median over solid clusters of their greatest depth.
         edge_grid.reset();
+        std::vector<std::uint8_t>().swap(boundary);
         std::vector<double> deepest(clusters, 0.0), inside(clusters, 0.0), size(clusters, 0.0);
-        r.depth.assign(n, 0.0f);
         for (std::size_t k = 0; k < m; ++k) {
             deepest[lab[k]] = std::max(deepest[lab[k]], double{depth[k]});
             inside[lab[k]] += depth[k] > 0;
             size[lab[k]] += 1;
-            r.depth[index[k]] = depth[k];
         }
         hollow.assign(clusters, 0);
         std::vector<double> solid_depths;
@@ -402,6 +429,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         }
         const double core_depth = params.core_fraction * r.fruit_radius;
         // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
+        near.emplace(pts, cell);
         std::vector<std::uint32_t> parent(m);
         std::iota(parent.begin(), parent.end(), 0u);
         const auto is_core = [&](std::size_t k) { return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth; };
@@ -415,33 +443,52 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
                 });
             }
         }
-        std::vector<std::uint32_t> core_size(m, 0);
+        // Every entry is pointed at its root (ascending: a root is its set's smallest member,
+        // as unions link the larger root under the smaller). A core root's own entry then holds
+        // kRoot | the core's size, and once numbered kRoot | kNumbered | its part number within
+        // its cluster: no per-root table beside the forest.
+        for (std::size_t k = 0; k < m; ++k) {
+            parent[k] = parent[parent[k]];
+        }
+        const auto root_of = [&](std::size_t k) { return (parent[k] & kRoot) != 0 ? static_cast<std::uint32_t>(k) : parent[k]; };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
-                ++core_size[find(parent, static_cast<std::uint32_t>(k))];
+                std::uint32_t& info = parent[root_of(k)];
+                info = ((info & kRoot) != 0 ? info : kRoot) + 1;
             }
         }
         const double ideal = 4.0 / 3.0 * 3.141592653589793 * std::pow(core_depth / s, 3);
         const auto min_core = static_cast<std::uint32_t>(std::max(1.0, std::floor(params.min_core_fraction * ideal)));
-        std::vector<std::uint32_t> core_id(m, kNone);  // root -> part number within its cluster
         std::vector<std::uint32_t> cores(clusters, 0);
         for (std::size_t k = 0; k < m; ++k) {  // in point order: deterministic numbering
-            const auto root = is_core(k) ? find(parent, static_cast<std::uint32_t>(k)) : kNone;
-            if (root != kNone && core_size[root] >= min_core && core_id[root] == kNone) {
-                core_id[root] = cores[lab[k]]++;
+            if (!is_core(k)) {
+                continue;
+            }
+            std::uint32_t& info = parent[root_of(k)];
+            if ((info & kNumbered) == 0 && (info & kValue) >= min_core) {
+                info = kRoot | kNumbered | cores[lab[k]]++;
             }
         }
         // 5. Marker watershed from the cores of clusters with two or more, deepest points first.
         //    Clusters never exchange points, so each floods on its own, in parallel (the order
         //    within a cluster, hence the result, is the same as one flood over all of them).
-        std::vector<std::uint32_t> assigned(m, kNone);
-        std::vector<std::vector<std::uint32_t>> seeds(clusters);
-        for (std::size_t k = 0; k < m; ++k) {
-            if (cores[lab[k]] >= 2 && is_core(k)) {
-                const auto id = core_id[find(parent, static_cast<std::uint32_t>(k))];
-                if (id != kNone) {
-                    assigned[k] = id;
-                    seeds[lab[k]].push_back(static_cast<std::uint32_t>(k));
+        //    Each point's part so far (kNone: none yet) is written over the forest, descending:
+        //    a root's entry is read by its members, all above it, before it is replaced.
+        const auto seeded = [&](std::size_t k) { return cores[lab[k]] >= 2 && is_core(k); };
+        std::vector<std::uint32_t> seed_start(std::size_t{clusters} + 1, 0);  // seeds per cluster, flat
+        for (std::size_t k = m; k-- > 0;) {
+            const std::uint32_t info = parent[root_of(k)];
+            parent[k] = seeded(k) && (info & kNumbered) != 0 ? info & kValue : kNone;
+            seed_start[lab[k] + 1] += parent[k] != kNone;
+        }
+        std::vector<std::uint32_t> assigned = std::move(parent);
+        std::partial_sum(seed_start.begin(), seed_start.end(), seed_start.begin());
+        std::vector<std::uint32_t> seeds(seed_start.back());
+        {
+            std::vector<std::uint32_t> at(seed_start.begin(), seed_start.end() - 1);
+            for (std::size_t k = 0; k < m; ++k) {  // in point order within each cluster
+                if (assigned[k] != kNone) {
+                    seeds[at[lab[k]]++] = static_cast<std::uint32_t>(k);
                 }
             }
         }
@@ -450,7 +497,8 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
             using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
             std::priority_queue<Item> heap;
             std::uint64_t seq = 0;
-            for (auto k : seeds[static_cast<std::size_t>(c)]) {
+            for (std::uint32_t q = seed_start[static_cast<std::size_t>(c)]; q < seed_start[static_cast<std::size_t>(c) + 1]; ++q) {
+                const std::uint32_t k = seeds[q];
                 heap.emplace(depth[k], ~seq++, k);
             }
             while (!heap.empty()) {
@@ -466,29 +514,36 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
             }
         }
         // Points the flood could not reach (apart by more than `link`): the part of the nearest
-        // assigned point of their cluster, found by repeating the flood with growing steps.
-        for (double step = 2 * link; step <= grid.cell(); step *= 2) {
+        // assigned point of their cluster, found by repeating the search with growing steps
+        // (kept aside: `assigned` must not see them). Not found at all: part 0.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> unreached;  // point, part
+        for (std::size_t k = 0; k < m; ++k) {
+            if (cores[lab[k]] >= 2 && assigned[k] == kNone) {
+                unreached.emplace_back(static_cast<std::uint32_t>(k), 0);
+            }
+        }
+        for (double step = 2 * link; step <= grid.cell() && !unreached.empty(); step *= 2) {
             bool left = false;
-            for (std::size_t k = 0; k < m; ++k) {
-                if (cores[lab[k]] >= 2 && assigned[k] == kNone) {
-                    double best = std::numeric_limits<double>::infinity();
-                    grid.for_each_within(pts[k], step, [&](std::uint32_t j, double d2) {
-                        if (assigned[j] != kNone && lab[j] == lab[k] && (d2 < best || (d2 == best && assigned[j] < part[k]))) {
-                            best = d2;
-                            part[k] = assigned[j];
-                        }
-                    });
-                    left = left || best == std::numeric_limits<double>::infinity();
-                }
+            for (auto& [k, to] : unreached) {
+                double best = std::numeric_limits<double>::infinity();
+                grid.for_each_within(pts[k], step, [&](std::uint32_t j, double d2) {
+                    if (assigned[j] != kNone && lab[j] == lab[k] && (d2 < best || (d2 == best && assigned[j] < to))) {
+                        best = d2;
+                        to = assigned[j];
+                    }
+                });
+                left = left || best == std::numeric_limits<double>::infinity();
             }
             if (!left) {
                 break;
             }
         }
-        for (std::size_t k = 0; k < m; ++k) {
-            if (assigned[k] != kNone) {
-                part[k] = assigned[k];
-            }
+        part = std::move(assigned);  // the flood's parts; unassigned points: part 0
+        for (auto& v : part) {
+            v = v == kNone ? 0 : v;
+        }
+        for (const auto& [k, to] : unreached) {
+            part[k] = to;
         }
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
@@ -503,10 +558,12 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
     for (std::uint32_t c = 0; c < clusters; ++c) {
         first[c + 1] = first[c] + parts[c];
     }
-    std::vector<std::uint32_t> out(n, 0);
-    std::vector<std::uint32_t> local(m);  // the same numbering on the compacted points
+    if (part.size() != m) {
+        part.assign(m, 0);  // no spacing: no parts
+    }
+    std::vector<std::uint32_t> local = std::move(part);  // the labels, on the compacted points
     for (std::size_t k = 0; k < m; ++k) {
-        local[k] = first[lab[k]] + std::min(part[k], parts[lab[k]] - 1) + 1;
+        local[k] = first[lab[k]] + std::min(local[k], parts[lab[k]] - 1) + 1;
     }
     if (r.hollow_radius > 0) {
         merge_hollow_fragments(pts, local, first[clusters], r.hollow_radius, r.merged_fragments);
@@ -515,8 +572,15 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         merge_solid_fragments(pts, depth, local, first[clusters], params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
                               r.merged_fragments);
     }
+    std::vector<std::uint32_t> out(n, 0);
     for (std::size_t k = 0; k < m; ++k) {
         out[index[k]] = local[k];
+    }
+    std::vector<std::uint32_t>().swap(local);
+    std::vector<std::uint32_t>().swap(lab);
+    r.depth.assign(n, 0.0f);
+    for (std::size_t k = 0; k < m; ++k) {
+        r.depth[index[k]] = depth[k];
     }
     std::uint32_t min_size = params.min_cluster_size;
     if (params.min_relative_size > 0) {
@@ -533,9 +597,6 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
         if (!present.empty()) {
             min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
         }
-    }
-    if (r.depth.size() != n) {
-        r.depth.assign(n, 0.0f);  // no spacing: no depths
     }
     r.cluster_count = renumber_by_size(out, min_size);
     r.labels = std::move(out);

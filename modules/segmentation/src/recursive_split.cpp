@@ -91,23 +91,40 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
     return static_cast<std::uint32_t>(ids.size());
 }
 
+namespace {
+
+RecursiveSplitResult by_cores(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const RecursiveSplitParams& params) {
+    CoreSplitResult c = core_split(cloud, std::move(labels), {.core_fraction = params.core_fraction,
+                                                              .min_cluster_size = params.min_cluster_size,
+                                                              .min_relative_size = params.min_relative_size});
+    RecursiveSplitResult r;
+    r.labels = std::move(c.labels);
+    r.cluster_count = c.cluster_count;
+    r.splits = c.splits;
+    r.size_threshold = r.volume_threshold = std::nan("");
+    r.spacing = c.spacing;
+    r.fruit_radius = c.fruit_radius;
+    r.hollow_radius = c.hollow_radius;
+    return r;
+}
+
+}  // namespace
+
+RecursiveSplitResult recursive_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels,
+                                     const RecursiveSplitParams& params) {
+    params.validate();
+    if (params.rule == SplitRule::kCores) {
+        return by_cores(cloud, std::move(labels), params);
+    }
+    return recursive_split(cloud, std::span<const std::uint32_t>(labels), params);
+}
+
 RecursiveSplitResult recursive_split(const XyzView& cloud,
                                      std::span<const std::uint32_t> labels,
                                      const RecursiveSplitParams& params) {
     params.validate();
     if (params.rule == SplitRule::kCores) {
-        CoreSplitResult c = core_split(cloud, labels, {.core_fraction = params.core_fraction,
-                                                       .min_cluster_size = params.min_cluster_size,
-                                                       .min_relative_size = params.min_relative_size});
-        RecursiveSplitResult r;
-        r.labels = std::move(c.labels);
-        r.cluster_count = c.cluster_count;
-        r.splits = c.splits;
-        r.size_threshold = r.volume_threshold = std::nan("");
-        r.spacing = c.spacing;
-        r.fruit_radius = c.fruit_radius;
-        r.hollow_radius = c.hollow_radius;
-        return r;
+        return by_cores(cloud, std::vector<std::uint32_t>(labels.begin(), labels.end()), params);
     }
     const std::size_t n = cloud.size;
     if (labels.size() != n) {

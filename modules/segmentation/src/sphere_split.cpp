@@ -12,7 +12,10 @@ namespace pc::segmentation {
 
 namespace {
 
-Eigen::Vector3d at(const Cloud& cloud, std::uint32_t i) { return {cloud[i].x, cloud[i].y, cloud[i].z}; }
+Eigen::Vector3d at(const XyzView& cloud, std::uint32_t i) {
+    const pcl::PointXYZ p = cloud[i];
+    return {p.x, p.y, p.z};
+}
 
 Sphere solve(const Eigen::Matrix4d& ata, const Eigen::Vector4d& atb) {
     Sphere s;
@@ -38,7 +41,7 @@ double surface_distance(const Sphere& s, const Eigen::Vector3d& p) {
 
 }  // namespace
 
-Sphere fit_sphere(const Cloud& cloud, std::span<const std::uint32_t> members) {
+Sphere fit_sphere(const XyzView& cloud, std::span<const std::uint32_t> members) {
     if (members.size() < 4) {
         return {};
     }
@@ -72,7 +75,7 @@ Sphere fit_sphere(const Cloud& cloud, std::span<const std::uint32_t> members) {
     return s;
 }
 
-std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
+std::vector<std::uint32_t> split_hollow(const XyzView& cloud,
                                         std::span<const std::uint32_t> members,
                                         double fruit_radius,
                                         double spacing,

@@ -84,6 +84,45 @@ TEST(Grid, WorksOnAStridedViewWithFieldsInAnyOrder) {
     }
 }
 
+TEST(Grid, KnnMatchesBruteForceWhateverTheKeyWidthAndSortPasses) {
+    // Unit cube: 500 cells per axis = 27-bit keys sorted in 3 passes (odd: the order comes back
+    // from the scratch); 5000 = 39 bits (64-bit keys, 4 passes); 200000 = 54 bits (5 passes).
+    const Cloud c = test::uniform(400, 1.0f, 8);
+    for (double cell : {0.002, 2e-4, 5e-6}) {
+        expect_knn_matches_brute_force(c, 4, cell);
+    }
+}
+
+TEST(Grid, WorksOnASubsetOfAView) {
+    // Every third point, in reverse: the grid numbers them by their place in the subset.
+    const Cloud c = test::uniform(900, 1.0f, 9);
+    std::vector<std::uint32_t> pick;
+    for (std::uint32_t i = 900; i >= 3; i -= 3) {
+        pick.push_back(i - 1);
+    }
+    Cloud copy;
+    for (auto i : pick) {
+        copy.push_back(c[i]);
+    }
+    const XyzView view = XyzView(c).subset(pick);
+    ASSERT_EQ(view.size, pick.size());
+    EXPECT_EQ(median_spacing(view), median_spacing(copy));
+    const Grid grid(view, 0.1);
+    std::vector<std::uint32_t> idx;
+    std::vector<double> d2;
+    for (std::uint32_t i = 0; i < copy.size(); ++i) {
+        EXPECT_EQ(view[i].x, copy[i].x);
+        grid.knn(i, 5, idx, d2);
+        const auto ref = brute_knn(copy, i, 5);
+        ASSERT_EQ(idx.size(), ref.size());
+        for (std::size_t m = 0; m < ref.size(); ++m) {
+            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
+            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
+        }
+    }
+    EXPECT_THROW((void)view.subset(pick), std::logic_error);  // no subset of a subset
+}
+
 TEST(Grid, KnnBreaksTiesByIndexOnALattice) {
     // Every inner lattice point has 6 neighbours at exactly the same distance.
     expect_knn_matches_brute_force(test::grid({0, 0, 0}, 6, 0.1f), 4, 0.1);

@@ -3,6 +3,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <span>
+#include <stdexcept>
 #include <vector>
 
 #include <pcl/point_cloud.h>
@@ -29,6 +31,9 @@ struct XyzView {
     std::size_t stride = 0;  ///< bytes from one point to the next
     std::size_t size = 0;
     std::uint32_t offset[3] = {0, 4, 8};  ///< byte offsets of x, y, z (float) in a point
+    /// When set, point i is the laid-out point index[i] (`size` entries): a subset of the points,
+    /// or a reordering, still without a copy of their coordinates.
+    const std::uint32_t* index = nullptr;
 
     XyzView() = default;
     explicit XyzView(const Cloud& cloud)
@@ -36,8 +41,19 @@ struct XyzView {
           stride(sizeof(pcl::PointXYZ)),
           size(cloud.size()) {}
 
+    /// The points idx[0], idx[1], ... of this view (idx must outlive the result).
+    [[nodiscard]] XyzView subset(std::span<const std::uint32_t> idx) const {
+        XyzView v = *this;
+        v.size = idx.size();
+        v.index = idx.data();
+        if (index != nullptr) {
+            throw std::logic_error("XyzView::subset of a subset");
+        }
+        return v;
+    }
+
     [[nodiscard]] pcl::PointXYZ operator[](std::size_t i) const {
-        const std::uint8_t* p = base + i * stride;
+        const std::uint8_t* p = base + (index != nullptr ? index[i] : i) * stride;
         pcl::PointXYZ q;
         std::memcpy(&q.x, p + offset[0], sizeof(float));
         std::memcpy(&q.y, p + offset[1], sizeof(float));

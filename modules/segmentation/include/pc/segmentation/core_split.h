@@ -59,6 +59,11 @@ struct CoreSplitResult {
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::span<const std::uint32_t> labels,
                                          const CoreSplitParams& params);
+/// The same, taking the labels' storage (reused for the working cluster ids: one per-point array
+/// less at the peak).
+[[nodiscard]] CoreSplitResult core_split(const XyzView& points,
+                                         std::vector<std::uint32_t>&& labels,
+                                         const CoreSplitParams& params);
 [[nodiscard]] inline CoreSplitResult core_split(const Cloud& cloud,
                                                 std::span<const std::uint32_t> labels,
                                                 const CoreSplitParams& params) {

@@ -57,6 +57,10 @@ struct RecursiveSplitResult {
 [[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
                                                    std::span<const std::uint32_t> labels,
                                                    const RecursiveSplitParams& params);
+/// The same, taking the labels' storage (the cores rule reuses it: core_split()).
+[[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
+                                                   std::vector<std::uint32_t>&& labels,
+                                                   const RecursiveSplitParams& params);
 [[nodiscard]] inline RecursiveSplitResult recursive_split(const Cloud& cloud,
                                                           std::span<const std::uint32_t> labels,
                                                           const RecursiveSplitParams& params) {

@@ -19,7 +19,10 @@ struct Sphere {
 
 /// Least-squares algebraic sphere fit (‖p‖² = 2 c·p + d) of cloud[members]; needs >= 4 points
 /// not on one plane.
-[[nodiscard]] Sphere fit_sphere(const Cloud& cloud, std::span<const std::uint32_t> members);
+[[nodiscard]] Sphere fit_sphere(const XyzView& cloud, std::span<const std::uint32_t> members);
+[[nodiscard]] inline Sphere fit_sphere(const Cloud& cloud, std::span<const std::uint32_t> members) {
+    return fit_sphere(XyzView(cloud), members);
+}
 
 /// Parameters of split_hollow(); lengths are multiples of the fruit radius R and the spacing s.
 struct HollowSplitParams {
@@ -35,11 +38,16 @@ struct HollowSplitParams {
 /// least squares; every point then goes to the sphere whose surface is nearest. Returns the part
 /// (0-based) of each member, all 0 when fewer than two spheres are found. `typical_points` is the
 /// size of a single-fruit cluster. Deterministic for a seed.
-[[nodiscard]] std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
+[[nodiscard]] std::vector<std::uint32_t> split_hollow(const XyzView& cloud,
                                                       std::span<const std::uint32_t> members,
                                                       double fruit_radius,
                                                       double spacing,
                                                       double typical_points,
                                                       const HollowSplitParams& params);
+[[nodiscard]] inline std::vector<std::uint32_t> split_hollow(const Cloud& cloud, std::span<const std::uint32_t> members,
+                                                             double fruit_radius, double spacing, double typical_points,
+                                                             const HollowSplitParams& params) {
+    return split_hollow(XyzView(cloud), members, fruit_radius, spacing, typical_points, params);
+}
 
 }  // namespace pc::segmentation
