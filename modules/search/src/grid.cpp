@@ -368,8 +368,9 @@ struct Grid::RowCursor {
     std::uint32_t row_at[3] = {};          // per dx: first row not below (x + dx, y - 1)
     std::uint32_t at[9] = {}, end[9] = {};  // per (dx, dy): cells of that row not yet passed
 
-    /// The existing cells among c's 3x3x3 neighbourhood (c included), ascending. Calls for one
-    /// cursor must come in ascending c: rows are then found by moving forward, not by hashing.
+    /// The existing cells among c's 3x3x3 neighbourhood (c included), in neighbour_cells()'s
+    /// order. Calls for one cursor must come in ascending c: rows are then found by moving
+    /// forward, not by hashing.
     void neighbours(std::uint32_t c, std::vector<std::uint32_t>& out) {
         out.clear();
         const std::uint64_t key = g.cells_[c].key;
@@ -380,8 +381,10 @@ struct Grid::RowCursor {
             next_row(xyz[0], xyz[1]);
         }
         const std::uint64_t zmask = (std::uint64_t{1} << g.bits_[2]) - 1;
-        for (int j = 0; j < 9; ++j) {
-            // Rows ascend with (dx, dy), cells within a row with z: the output is ascending.
+        // The own row first, then the rows sharing a face with it, then the diagonal ones: the
+        // nearest cells come first, for sweeps that stop once they have found enough.
+        static constexpr int kRows[9] = {4, 1, 3, 5, 7, 0, 2, 6, 8};
+        for (const int j : kRows) {
             while (at[j] < end[j] && static_cast<std::int64_t>(g.cells_[at[j]].key & zmask) < xyz[2] - 1) {
                 ++at[j];
             }

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -121,6 +122,48 @@ TEST(Grid, WorksOnASubsetOfAView) {
         }
     }
     EXPECT_THROW((void)view.subset(pick), std::logic_error);  // no subset of a subset
+}
+
+TEST(Grid, NeighbourCellsAreTheBlockAroundACellNearestRowsFirst) {
+    const Cloud c = test::uniform(3000, 1.0f, 10);
+    const double cell = 0.1;
+    double origin[3] = {1e9, 1e9, 1e9};
+    for (const auto& p : c) {
+        origin[0] = std::min(origin[0], double{p.x});
+        origin[1] = std::min(origin[1], double{p.y});
+        origin[2] = std::min(origin[2], double{p.z});
+    }
+    const Grid grid(c, cell);
+    const auto at = [&](std::size_t cc) {
+        const float* p = grid.point(grid.cell_begin(cc));
+        std::array<long, 3> v{};
+        for (int a = 0; a < 3; ++a) {
+            v[a] = static_cast<long>(std::floor((double{p[a]} - origin[a]) / cell));
+        }
+        return v;
+    };
+    std::vector<std::uint32_t> nb;
+    for (std::size_t cc = 0; cc < grid.cell_count(); ++cc) {
+        grid.neighbour_cells(cc, nb);
+        const auto here = at(cc);
+        std::vector<std::uint32_t> expected;
+        for (std::size_t o = 0; o < grid.cell_count(); ++o) {
+            const auto there = at(o);
+            if (std::abs(there[0] - here[0]) <= 1 && std::abs(there[1] - here[1]) <= 1 && std::abs(there[2] - here[2]) <= 1) {
+                expected.push_back(static_cast<std::uint32_t>(o));
+            }
+        }
+        std::vector<std::uint32_t> got = nb;
+        std::sort(got.begin(), got.end());
+        ASSERT_EQ(got, expected) << "cell " << cc;
+        int last = 0;  // 0: own row, 1: a row sharing a face, 2: a diagonal row
+        for (auto o : nb) {
+            const auto there = at(o);
+            const int kind = static_cast<int>(std::abs(there[0] - here[0]) + std::abs(there[1] - here[1]));
+            EXPECT_GE(kind, last) << "cell " << cc;
+            last = kind;
+        }
+    }
 }
 
 TEST(Grid, KnnBreaksTiesByIndexOnALattice) {

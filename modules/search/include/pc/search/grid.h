@@ -72,7 +72,9 @@ public:
     void sweep_cells(
         const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
         const std::function<bool(std::uint32_t)>& needs_neighbours = {}) const;
-    /// The existing cells among c's 3x3x3 neighbourhood (c included), ascending.
+    /// The existing cells among c's 3x3x3 neighbourhood (c included), nearest rows first: c's own
+    /// row (x, y), then the four rows sharing a face with it, then the four diagonal ones; by z
+    /// within a row. Sweeps that stop once they have found enough look at the near cells first.
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
     /// Original cloud index of sorted position s.
     [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return order_[s]; }
