@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
@@ -371,7 +372,7 @@ struct Grid::RowCursor {
     /// The existing cells among c's 3x3x3 neighbourhood (c included), in neighbour_cells()'s
     /// order. Calls for one cursor must come in ascending c: rows are then found by moving
     /// forward, not by hashing.
-    void neighbours(std::uint32_t c, std::vector<std::uint32_t>& out) {
+    void neighbours(std::uint32_t c, std::vector<std::uint32_t>& out, Neighbours which = Neighbours::kAll) {
         out.clear();
         const std::uint64_t key = g.cells_[c].key;
         std::int64_t xyz[3];
@@ -383,13 +384,19 @@ struct Grid::RowCursor {
         const std::uint64_t zmask = (std::uint64_t{1} << g.bits_[2]) - 1;
         // The own row first, then the rows sharing a face with it, then the diagonal ones: the
         // nearest cells come first, for sweeps that stop once they have found enough.
+        // Cells after c (kAfter): the own row above z and the rows after it, (x, y + 1) and x + 1.
         static constexpr int kRows[9] = {4, 1, 3, 5, 7, 0, 2, 6, 8};
-        for (const int j : kRows) {
+        static constexpr int kAfterRows[5] = {4, 5, 6, 7, 8};
+        const bool after = which == Neighbours::kAfter;
+        for (const int j : after ? std::span<const int>(kAfterRows) : std::span<const int>(kRows)) {
             while (at[j] < end[j] && static_cast<std::int64_t>(g.cells_[at[j]].key & zmask) < xyz[2] - 1) {
                 ++at[j];
             }
-            for (std::uint32_t t = at[j];
-                 t < end[j] && static_cast<std::int64_t>(g.cells_[t].key & zmask) <= xyz[2] + 1; ++t) {
+            std::uint32_t t = at[j];
+            if (after && j == 4) {
+                t = c + 1;  // the own row's cells are consecutive: c + 1 is the next, if any
+            }
+            for (; t < end[j] && static_cast<std::int64_t>(g.cells_[t].key & zmask) <= xyz[2] + 1; ++t) {
                 out.push_back(t);
             }
         }
@@ -655,7 +662,7 @@ void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const
 
 void Grid::sweep_cells(
     const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
-    const std::function<bool(std::uint32_t)>& needs_neighbours) const {
+    const std::function<bool(std::uint32_t)>& needs_neighbours, Neighbours which) const {
     // Runs of consecutive cells per task, so that the row cursors mostly move forward.
     constexpr std::int64_t kRun = 256;
     const auto cells = static_cast<std::int64_t>(cells_.size());
@@ -669,7 +676,7 @@ void Grid::sweep_cells(
             for (std::int64_t c = run * kRun; c < std::min(cells, (run + 1) * kRun); ++c) {
                 const auto cell = static_cast<std::uint32_t>(c);
                 if (!needs_neighbours || needs_neighbours(cell)) {
-                    cursor.neighbours(cell, nb);
+                    cursor.neighbours(cell, nb, which);
                 } else {
                     nb.clear();
                 }

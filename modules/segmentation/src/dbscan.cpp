@@ -238,7 +238,7 @@ DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams&
                 }
             }
         }
-    }, [&](std::uint32_t c) { return comps[c] != 0; });
+    }, [&](std::uint32_t c) { return comps[c] != 0; }, search::Grid::Neighbours::kAfter);
 
     // 3. Each point's forest entry is set to its cluster's root: core points by their component
     //    (the unions are done), border points by their nearest core point's (ties: the smallest

@@ -164,6 +164,28 @@ TEST(Grid, NeighbourCellsAreTheBlockAroundACellNearestRowsFirst) {
             last = kind;
         }
     }
+    // A sweep handing over the cells after c: exactly those of the block above c.
+    std::mutex mutex;
+    std::size_t seen = 0;
+    grid.sweep_cells(
+        [&](std::uint32_t cc, const std::vector<std::uint32_t>& after) {
+            std::vector<std::uint32_t> all;
+            grid.neighbour_cells(cc, all);
+            std::vector<std::uint32_t> expected;
+            for (auto o : all) {
+                if (o > cc) {
+                    expected.push_back(o);
+                }
+            }
+            std::vector<std::uint32_t> got = after;
+            std::sort(got.begin(), got.end());
+            std::sort(expected.begin(), expected.end());
+            const std::lock_guard<std::mutex> lock(mutex);
+            EXPECT_EQ(got, expected) << "cell " << cc;
+            ++seen;
+        },
+        {}, Grid::Neighbours::kAfter);
+    EXPECT_EQ(seen, grid.cell_count());
 }
 
 TEST(Grid, KnnBreaksTiesByIndexOnALattice) {

@@ -65,13 +65,17 @@ public:
     [[nodiscard]] std::size_t cell_count() const { return cells_.size(); }
     [[nodiscard]] std::uint32_t cell_begin(std::size_t c) const { return cells_[c].begin; }
     [[nodiscard]] std::uint32_t cell_end(std::size_t c) const { return cells_[c].end; }
+    /// Which neighbour cells a sweep hands over: all of the 3x3x3 block, or only the cells after
+    /// c in cell order (each pair of neighbouring cells is then seen once, from its first cell).
+    enum class Neighbours { kAll, kAfter };
     /// Calls f(c, neighbours) for every cell c, in parallel over cells (OpenMP, dynamic schedule),
-    /// with neighbours = neighbour_cells(c). f is called concurrently for distinct cells.
-    /// `needs_neighbours`, when given, says which cells need them: the others get an empty list
-    /// and cost no look-ups.
+    /// with neighbours = neighbour_cells(c) (kAfter: those above c, in the same order).
+    /// f is called concurrently for distinct cells. `needs_neighbours`, when given, says which
+    /// cells need them: the others get an empty list and cost no look-ups.
     void sweep_cells(
         const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
-        const std::function<bool(std::uint32_t)>& needs_neighbours = {}) const;
+        const std::function<bool(std::uint32_t)>& needs_neighbours = {},
+        Neighbours which = Neighbours::kAll) const;
     /// The existing cells among c's 3x3x3 neighbourhood (c included), nearest rows first: c's own
     /// row (x, y), then the four rows sharing a face with it, then the four diagonal ones; by z
     /// within a row. Sweeps that stop once they have found enough look at the near cells first.
