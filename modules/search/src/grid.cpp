@@ -11,6 +11,8 @@
 #include <tuple>
 #include <type_traits>
 
+#include <omp.h>
+
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
 
@@ -23,7 +25,9 @@ constexpr std::int64_t kAxisCells = std::int64_t{1} << 21;  // 21 bits per axis 
 /// LSD radix sort of n (key, index) pairs, 12 bits per pass, skipping passes where all digits
 /// agree. Keys are 32-bit when the cell key fits (nearly always): half the bytes to move and hold.
 /// `k2` and `i2` are scratch of n entries each; the sorted pairs end in either array of each
-/// pair, which is returned.
+/// pair, which is returned. Each pass runs on two threads (each counts and moves its half of the
+/// input; its elements go after the first half's within every digit): stable, so the result is
+/// the serial sort's.
 template <class Key>
 std::pair<Key*, std::uint32_t*> radix_sort(Key* keys, std::uint32_t* idx, Key* k2, std::uint32_t* i2, std::size_t n) {
     Key all_or = 0, all_and = static_cast<Key>(~Key{0});
@@ -32,22 +36,43 @@ std::pair<Key*, std::uint32_t*> radix_sort(Key* keys, std::uint32_t* idx, Key* k
         all_and &= keys[i];
     }
     const Key varying = all_or ^ all_and;
-    std::vector<std::size_t> count(4097);
+    constexpr std::size_t kDigits = 4096;
+    const int threads = n >= (std::size_t{1} << 16) ? 2 : 1;  // small inputs: not worth a thread
+    std::vector<std::size_t> count(kDigits * static_cast<std::size_t>(threads));
     for (int shift = 0; shift < static_cast<int>(8 * sizeof(Key)); shift += 12) {
         if (((varying >> shift) & 0xfff) == 0) {
             continue;
         }
         std::fill(count.begin(), count.end(), 0);
-        for (std::size_t i = 0; i < n; ++i) {
-            ++count[((keys[i] >> shift) & 0xfff) + 1];
-        }
-        for (int b = 0; b < 4096; ++b) {
-            count[b + 1] += count[b];
-        }
-        for (std::size_t i = 0; i < n; ++i) {
-            const std::size_t at = count[(keys[i] >> shift) & 0xfff]++;
-            k2[at] = keys[i];
-            i2[at] = idx[i];
+#pragma omp parallel num_threads(threads)
+        {
+            // The team may be smaller than asked (nested in another parallel region, a limit).
+            const auto parts = static_cast<std::size_t>(omp_get_num_threads());
+            const auto part = static_cast<std::size_t>(omp_get_thread_num());
+            const std::size_t from = n * part / parts;
+            const std::size_t to = n * (part + 1) / parts;
+            std::size_t* mine = &count[kDigits * part];
+            for (std::size_t i = from; i < to; ++i) {
+                ++mine[(keys[i] >> shift) & 0xfff];
+            }
+#pragma omp barrier
+#pragma omp single
+            {
+                // Digit-major, part-minor starting offsets.
+                std::size_t at = 0;
+                for (std::size_t d = 0; d < kDigits; ++d) {
+                    for (std::size_t p = 0; p < parts; ++p) {
+                        const std::size_t c = count[kDigits * p + d];
+                        count[kDigits * p + d] = at;
+                        at += c;
+                    }
+                }
+            }
+            for (std::size_t i = from; i < to; ++i) {
+                const std::size_t at = mine[(keys[i] >> shift) & 0xfff]++;
+                k2[at] = keys[i];
+                i2[at] = idx[i];
+            }
         }
         std::swap(keys, k2);
         std::swap(idx, i2);
