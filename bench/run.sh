@@ -55,6 +55,23 @@ ours() {
   echo "$(printf '%s\n' "${walls[@]}" | median) $((rss / 1024))"
 }
 
+# alone NOTE CMD...: our algorithm alone, as the peers are timed (reading and writing excluded):
+# from the read note to the note starting with NOTE among the tool's -v notes (ms resolution),
+# median of at least 5 runs, in s
+alone() {
+  local note=$1 t times=()
+  shift
+  for ((r = 0; r < (runs > 5 ? runs : 5); r++)); do
+    t=$(bash -c "$* -v" 2>&1 >/dev/null | awk -v n="$note" '
+      { v = ""; if (match($0, /\[[0-9.]+ s\]$/)) v = substr($0, RSTART + 1, RLENGTH - 4) }
+      v != "" && / points, / && read == "" { read = v }
+      v != "" && index($0, ": " n) && read != "" { done = v }
+      END { if (done != "" && read != "") printf "%.4f\n", done - read; else print "nan" }')
+    times+=("$t")
+  done
+  printf '%s\n' "${times[@]}" | median
+}
+
 # peer CMD...: algorithm time printed by the peer (median) and the process's peak RSS, as "s MB"
 peer() {
   local n=$runs t m rss=0 secs=()
@@ -74,6 +91,10 @@ rows="$data/rows.txt"
 row() { echo "| $1 | $2 | $3 | $4 | $5 |" >>"$rows"; echo "$1 $2: $3 vs $4 ($5)" >&2; }
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (a > 0) printf "%.1fx", b / a; else print "-" }'; }
 fmt() { awk -v s="$1" -v m="$2" 'BEGIN { printf "%.3f s, %d MB", s, m }'; }
+# like-for-like ratio (our algorithm alone against the peer's), then the whole process's
+ratio2() { echo "$(ratio "$1" "$3") ($(ratio "$2" "$3") whole process)"; }
+# our whole process, and the algorithm alone
+fmt2() { echo "$(fmt "$1" "$2") ($3 alone: $(awk -v a="$4" 'BEGIN { printf "%.3f s", a }'))"; }
 
 checks=""
 for size in "${sizes[@]}"; do
@@ -89,22 +110,24 @@ for size in "${sizes[@]}"; do
   bytes=$(stat -c %s "$cloud")
 
   read -r s1 m1 <<<"$(ours dbscan "$b/pc_dbscan --eps 0.015 --min-points 10 -i $cloud")"
+  a1=$(alone dbscan: "$b/pc_dbscan --eps 0.015 --min-points 10 -i $cloud")
   read -r s2 m2 <<<"$(peer "$py bench/peers.py o3d_dbscan $cloud 0.015 10")"
-  row "DBSCAN eps 0.015, min 10" "$label" "$(fmt "$s1" "$m1")" "Open3D cluster_dbscan: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
+  row "DBSCAN eps 0.015, min 10" "$label" "$(fmt2 "$s1" "$m1" clustering "$a1")" "Open3D cluster_dbscan: $(fmt "$s2" "$m2")" "$(ratio2 "$a1" "$s1" "$s2")"
   if [ "$size" -le 1000000 ]; then
     read -r s3 m3 <<<"$(peer "$py bench/peers.py sk_dbscan $cloud 0.015 10")"
-    row "DBSCAN eps 0.015, min 10" "$label" "$(fmt "$s1" "$m1")" "scikit-learn DBSCAN: $(fmt "$s3" "$m3")" "$(ratio "$s1" "$s3")"
+    row "DBSCAN eps 0.015, min 10" "$label" "$(fmt2 "$s1" "$m1" clustering "$a1")" "scikit-learn DBSCAN: $(fmt "$s3" "$m3")" "$(ratio2 "$a1" "$s1" "$s3")"
   fi
   read -r s3 m3 <<<"$(peer "$b/pcl_peer ece $cloud 0.015 10")"
-  row "Euclidean clusters 0.015" "$label" "$(fmt "$s1" "$m1") (pc_dbscan)" "PCL EuclideanClusterExtraction: $(fmt "$s3" "$m3")" "$(ratio "$s1" "$s3")"
+  row "Euclidean clusters 0.015" "$label" "$(fmt2 "$s1" "$m1" clustering "$a1") (pc_dbscan)" "PCL EuclideanClusterExtraction: $(fmt "$s3" "$m3")" "$(ratio2 "$a1" "$s1" "$s3")"
 
   read -r s1 m1 <<<"$(ours knn "$b/pc_knn_outlier --k 5 --drop-percentile 10 -i $cloud")"
+  a1=$(alone knn_outlier: "$b/pc_knn_outlier --k 5 --drop-percentile 10 -i $cloud")
   read -r s2 m2 <<<"$(peer "$b/pcl_peer knn $cloud 5 2")"
-  row "kNN mean distance, k 5" "$label" "$(fmt "$s1" "$m1") (pc_knn_outlier)" "PCL KdTreeFLANN, 2 threads: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
+  row "kNN mean distance, k 5" "$label" "$(fmt2 "$s1" "$m1" "kNN and outliers" "$a1") (pc_knn_outlier)" "PCL KdTreeFLANN, 2 threads: $(fmt "$s2" "$m2")" "$(ratio2 "$a1" "$s1" "$s2")"
   read -r s2 m2 <<<"$(peer "$py bench/peers.py o3d_sor $cloud 5 1.0")"
-  row "statistical outlier removal" "$label" "$(fmt "$s1" "$m1") (pc_knn_outlier)" "Open3D remove_statistical_outlier: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
+  row "statistical outlier removal" "$label" "$(fmt2 "$s1" "$m1" "kNN and outliers" "$a1") (pc_knn_outlier)" "Open3D remove_statistical_outlier: $(fmt "$s2" "$m2")" "$(ratio2 "$a1" "$s1" "$s2")"
   read -r s2 m2 <<<"$(peer "$b/pcl_peer sor $cloud 5 1.0")"
-  row "statistical outlier removal" "$label" "$(fmt "$s1" "$m1") (pc_knn_outlier)" "PCL StatisticalOutlierRemoval: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
+  row "statistical outlier removal" "$label" "$(fmt2 "$s1" "$m1" "kNN and outliers" "$a1") (pc_knn_outlier)" "PCL StatisticalOutlierRemoval: $(fmt "$s2" "$m2")" "$(ratio2 "$a1" "$s1" "$s2")"
   read -r s2 m2 <<<"$(ours sor_tool "pcl_outlier_removal $cloud $data/sor_out.pcd -method statistical -mean_k 5 -std_dev_mul 1.0")"
   row "statistical outlier removal (whole programs)" "$label" "$(fmt "$s1" "$m1") (pc_knn_outlier)" "pcl_outlier_removal: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
 
@@ -183,8 +206,9 @@ if [[ " ${sizes[*]} " == *" 4000000 "* ]]; then
   points=$(head -c 400 "$cloud" | awk '/^POINTS/ { print $2 }')
   label="$(awk -v p="$points" 'BEGIN { printf "%.2gM", p / 1e6 }') (1M scene, 4x denser)"
   read -r s1 m1 <<<"$(ours dbscan_dense "$b/pc_dbscan --eps 0.015 --min-points 10 -i $cloud")"
+  a1=$(alone dbscan: "$b/pc_dbscan --eps 0.015 --min-points 10 -i $cloud")
   read -r s2 m2 <<<"$(peer "$py bench/peers.py o3d_dbscan $cloud 0.015 10")"
-  row "DBSCAN eps 0.015, min 10" "$label" "$(fmt "$s1" "$m1")" "Open3D cluster_dbscan: $(fmt "$s2" "$m2")" "$(ratio "$s1" "$s2")"
+  row "DBSCAN eps 0.015, min 10" "$label" "$(fmt2 "$s1" "$m1" clustering "$a1")" "Open3D cluster_dbscan: $(fmt "$s2" "$m2")" "$(ratio2 "$a1" "$s1" "$s2")"
 fi
 
 start=$( { time (for i in $(seq 20); do $b/pc_dbscan --version >/dev/null; done) ; } 2>&1 )
@@ -195,7 +219,10 @@ text=$(cat <<EOT
 Generated by \`bash bench/run.sh --runs $runs --sizes "${sizes[*]}"\` at commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown).
 Machine: $machine. Release build, no \`-march=native\`.
 
-Ours: the whole process (start, read, work, write to /dev/null), median of $((runs > 5 ? runs : 5)) runs, peak RSS.
+Ours: the whole process (start, read, work, write to /dev/null), median of $((runs > 5 ? runs : 5)) runs, peak RSS;
+for DBSCAN and kNN also the algorithm alone, timed as the peers are (from the tool's read note to
+its result note, \`-v\`, median of $((runs > 5 ? runs : 5)) runs). The ratio is then like for like
+(algorithm against algorithm), with the whole process's ratio beside it.
 Peers: the algorithm alone as timed inside the process (reading excluded), median of $runs runs (one
 at 4M), peak RSS of the process; "whole programs" rows time both sides as processes.
 Clouds: \`pc_synth --species apple --voxel 0.0066\` with the fruit count and canopy scaled to the size

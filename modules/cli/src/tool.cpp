@@ -19,6 +19,7 @@
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <mutex>
 #include <sstream>
 
 #include <boost/program_options.hpp>
@@ -176,7 +177,7 @@ void Streams::note(const std::string& message) const {
         // Elapsed time since the tool started: progress and cost of each step on large clouds.
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
         char stamp[32];
-        std::snprintf(stamp, sizeof stamp, " [%.2f s]", t);
+        std::snprintf(stamp, sizeof stamp, " [%.3f s]", t);
         std::cerr << tool_ << ": " << message << stamp << std::endl;
     }
 }
@@ -340,7 +341,7 @@ namespace {
 /// and that range asks for transparent huge pages (one fault per 2 MiB; honoured when the system
 /// allows THP on madvise, the Debian default). Memory that is never touched costs nothing.
 /// Not under the sanitizers, which bring their own allocator.
-void tune_allocator() {
+void tune_allocator_once() {
 #ifndef PC_SANITIZE
     constexpr int kReserve = 1 << 30;
     if (mallopt(M_MMAP_MAX, 0) == 0 || mallopt(M_TRIM_THRESHOLD, INT_MAX) == 0 ||
@@ -370,6 +371,11 @@ void tune_allocator() {
 }
 
 }  // namespace
+
+void tune_allocator() {
+    static std::once_flag once;
+    std::call_once(once, tune_allocator_once);
+}
 
 int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
     tune_allocator();

@@ -62,6 +62,10 @@ void write_cloud_file(const std::string& path, const io::Blob& blob);
 /// Writes text to `path` the same way (temporary file, fsync, rename).
 void write_text_file(const std::string& path, std::string_view text);
 
+/// Tunes glibc's malloc for large clouds (see CONTRIBUTING, "Speed and memory"): Tool::run()
+/// calls it first; a program without a Tool (bench/dbscan_loop) calls it itself. Once per process.
+void tune_allocator();
+
 /// Command-line front end shared by every tool: option binding with generated --help, the common
 /// options (-i -o -v -q --format --version), exit codes and error lines. See docs/architecture.md.
 class Tool {
