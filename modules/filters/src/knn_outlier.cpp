@@ -35,8 +35,7 @@ KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& para
     const std::size_t n = points.size;
     KnnOutlierResult r;
     r.mean_distance.assign(n, std::numeric_limits<double>::infinity());
-    r.outlier.assign(n, 1);
-    {  // the grid is freed before the scores are copied for the percentile: peak memory
+    {  // the grid is freed before the flags are allocated and the scores copied: peak memory
         const search::Grid grid(points, search::Grid::suggest_cell(points, kOccupancy));
         grid.all_knn(params.k, [&](std::uint32_t i, const std::vector<std::uint32_t>&,
                                    const std::vector<double>& d2) {
@@ -50,6 +49,7 @@ KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& para
             r.mean_distance[i] = sum / static_cast<double>(d2.size());
         });
     }
+    r.outlier.assign(n, 1);
     std::vector<double> finite;
     finite.reserve(n);
     for (double v : r.mean_distance) {

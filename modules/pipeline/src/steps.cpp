@@ -89,7 +89,7 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
         search::Grid grid(points.view(), p.eps);
         grid.release_cloud();
         points.release();
-        return segmentation::dbscan(grid, in.size(), p);
+        return segmentation::dbscan(std::move(grid), in.size(), p);
     }();
     std::size_t noise = 0;
     for (auto l : r.labels) {

@@ -124,6 +124,24 @@ TEST(Dbscan, OverAGridWhoseCloudWasFreedGivesTheSameResult) {
     EXPECT_THROW((void)dbscan(grid, n, {.eps = 0.2, .min_points = 4}), InvalidArgument);  // cells < eps
 }
 
+TEST(Dbscan, OverAHandedOverGridGivesTheSameResultAndKeepsItsOrder) {
+    // The grid's coordinates and cells are freed before the result is built; index_of stays.
+    const DbscanParams p{.eps = 0.05, .min_points = 4};
+    const Cloud cloud = test::concat(test::uniform(800, 1.0f, 43), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 44));
+    const search::Grid viewed(cloud, p.eps);
+    search::Grid handed(cloud, p.eps);
+    const DbscanResult want = dbscan(viewed, cloud.size(), p);
+    const DbscanResult got = dbscan(std::move(handed), cloud.size(), p);
+    EXPECT_EQ(got.labels, want.labels);
+    EXPECT_EQ(got.core, want.core);
+    EXPECT_EQ(got.cluster_count, want.cluster_count);
+    ASSERT_EQ(handed.finite_count(), viewed.finite_count());  // NOLINT(bugprone-use-after-move): kept on purpose
+    for (std::uint32_t s = 0; s < viewed.finite_count(); ++s) {
+        EXPECT_EQ(handed.index_of(s), viewed.index_of(s));
+    }
+    EXPECT_EQ(handed.cell_count(), 0u);
+}
+
 TEST(Dbscan, PointsAtExactlyEpsAreNeighbours) {
     // Lattice spacing 0.25 (exact in binary): with eps = 0.25 each inner point has 7 neighbours
     // (itself + 6 at exactly eps); corners 4. sklearn's `<=` makes every point core at 4.

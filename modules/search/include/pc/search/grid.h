@@ -96,6 +96,10 @@ public:
     /// Forgets the cloud, which the caller may then free: sweeps, radius queries, knn_point()
     /// and all_knn() work on the grid's own copy of the points; knn(i) needs the cloud (throws).
     void release_cloud() { has_points_ = false; }
+    /// Frees the sorted coordinates, the cells and the search structures, keeping index_of() and
+    /// finite_count() (the only calls left valid): for a caller done searching that still maps
+    /// sorted positions back to indices while it allocates its result.
+    void release_all_but_order();
     [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
 
 private:
