@@ -1,3 +1,6 @@
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -73,6 +76,37 @@ TEST(PcConvert, ExistingOutputSurvivesAFailedRun) {
     const RunResult r = run_shell("@pc_convert -o " + dir.file("out.pcd"), "garbage\n");
     EXPECT_EQ(r.code, 1);
     EXPECT_EQ(slurp(dir.file("out.pcd")), "precious");
+}
+
+TEST(PcConvert, OutputToAFifoIsWrittenThroughNotReplaced) {
+    // -o /dev/null once renamed a temporary file over the device (as root). A FIFO stands for
+    // any existing non-regular file: it must stay a FIFO and its reader must get the cloud.
+    TempDir dir;
+    const std::string fifo = dir.file("pipe");
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    const RunResult r = run_shell("timeout 20 cat " + fifo + " > " + dir.file("got") + " & @pc_convert -i " + kSample +
+                                  " -o " + fifo + "; wait");
+    EXPECT_EQ(r.code, 0) << r.err;
+    struct stat st {};
+    ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
+    EXPECT_TRUE(S_ISFIFO(st.st_mode));
+    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("got")).out.rfind("format pcd binary\npoints 5640\n", 0), 0u);
+}
+
+TEST(PcConvert, OutputThroughASymlinkReplacesItsTargetAndKeepsPermissions) {
+    TempDir dir;
+    spit(dir.file("target.pcd"), "old");
+    ASSERT_EQ(::chmod(dir.file("target.pcd").c_str(), 0640), 0);
+    ASSERT_EQ(::symlink(dir.file("target.pcd").c_str(), dir.file("link.pcd").c_str()), 0);
+    const RunResult r = run_shell("@pc_convert -i " + kSample + " -o " + dir.file("link.pcd"));
+    EXPECT_EQ(r.code, 0) << r.err;
+    struct stat st {};
+    ASSERT_EQ(::lstat(dir.file("link.pcd").c_str(), &st), 0);
+    EXPECT_TRUE(S_ISLNK(st.st_mode));  // the link stays a link
+    ASSERT_EQ(::stat(dir.file("target.pcd").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 07777, 0640u);  // the file keeps its permissions
+    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("target.pcd")).out.rfind("format pcd binary\npoints 5640\n", 0), 0u);
+    EXPECT_NE(run_shell("@pc_convert -i " + kSample + " -o " + dir.path).code, 0);  // a directory is refused
 }
 
 TEST(PcConvert, VerboseNotesGoToStderrOnly) {

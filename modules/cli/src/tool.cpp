@@ -79,35 +79,81 @@ bool ends_with(const std::string& s, std::string_view suffix) {
     return tail == suffix;
 }
 
-/// A file written next to its destination and renamed into place only after success.
+/// An output written so that a failure never leaves a partial file: a regular file (or a new
+/// one) is written next to its destination and renamed into place only after success, keeping
+/// an existing file's permission bits; through a symbolic link, next to and onto the link's
+/// target (the link stays). Anything else that exists (/dev/null, a FIFO, a terminal, a
+/// socket) is written directly: renaming over it would replace the device or pipe with a file.
 class AtomicFile {
 public:
-    explicit AtomicFile(const std::string& path) : path_(path), tmp_(path + ".tmp.XXXXXX") {
+    explicit AtomicFile(const std::string& path) : path_(path) {
+        struct stat st {};
+        const bool exists = ::stat(path.c_str(), &st) == 0;
+        if (exists && !S_ISREG(st.st_mode)) {
+            if (S_ISDIR(st.st_mode)) {
+                throw IoError(path + ": is a directory");
+            }
+            fd_ = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+            if (fd_ < 0) {
+                throw IoError(path + ": cannot open output: " + std::strerror(errno));
+            }
+            direct_ = true;
+            return;
+        }
+        mode_t mode = 0;
+        if (exists) {
+            mode = st.st_mode & 07777;  // an existing file keeps its permission bits
+            struct stat link {};
+            if (::lstat(path.c_str(), &link) == 0 && S_ISLNK(link.st_mode)) {
+                char* real = ::realpath(path.c_str(), nullptr);
+                if (real == nullptr) {
+                    throw IoError(path + ": cannot resolve the link: " + std::strerror(errno));
+                }
+                target_ = real;
+                std::free(real);
+            }
+        } else {
+            const mode_t mask = ::umask(0);
+            ::umask(mask);
+            mode = 0666 & ~mask;
+        }
+        if (target_.empty()) {
+            target_ = path;
+        }
+        tmp_ = target_ + ".tmp.XXXXXX";
         fd_ = ::mkstemp(tmp_.data());
         if (fd_ < 0) {
             throw IoError(path + ": cannot create output: " + std::strerror(errno));
         }
-        const mode_t mask = ::umask(0);
-        ::umask(mask);
-        (void)::fchmod(fd_, 0666 & ~mask);
+        (void)::fchmod(fd_, mode);
     }
     AtomicFile(const AtomicFile&) = delete;
     AtomicFile& operator=(const AtomicFile&) = delete;
     ~AtomicFile() {
         if (fd_ >= 0) {
             ::close(fd_);
-            ::unlink(tmp_.c_str());
+            if (!direct_) {
+                ::unlink(tmp_.c_str());
+            }
         }
     }
     [[nodiscard]] int fd() const { return fd_; }
     void commit() {
+        if (direct_) {
+            const int fd = fd_;
+            fd_ = -1;
+            if (::close(fd) != 0) {
+                throw IoError(path_ + ": write failed: " + std::strerror(errno));
+            }
+            return;
+        }
         if (::fsync(fd_) != 0 || ::close(fd_) != 0) {
             fd_ = -1;
             ::unlink(tmp_.c_str());
             throw IoError(path_ + ": write failed: " + std::strerror(errno));
         }
         fd_ = -1;
-        if (::rename(tmp_.c_str(), path_.c_str()) != 0) {
+        if (::rename(tmp_.c_str(), target_.c_str()) != 0) {
             const int err = errno;
             ::unlink(tmp_.c_str());
             throw IoError(path_ + ": cannot rename into place: " + std::strerror(err));
@@ -115,8 +161,9 @@ public:
     }
 
 private:
-    std::string path_, tmp_;
+    std::string path_, target_, tmp_;
     int fd_ = -1;
+    bool direct_ = false;  // an existing device, FIFO or socket: written where it is
 };
 
 }  // namespace
