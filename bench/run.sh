@@ -97,14 +97,21 @@ ratio2() { echo "$(ratio "$1" "$3") ($(ratio "$2" "$3") whole process)"; }
 fmt2() { echo "$(fmt "$1" "$2") ($3 alone: $(awk -v a="$4" 'BEGIN { printf "%.3f s", a }'))"; }
 
 checks=""
-for size in "${sizes[@]}"; do
-  # Fruit-canopy clouds at one density (apple explicit, 6.6 mm voxels: ~50 neighbours within
-  # 0.015 m, as the issue's 1M cloud): the number of fruit and the canopy grow with the size.
-  fruit=$(awk -v n="$size" 'BEGIN { printf "%d", n / 790 + 0.5 }')
+# canopy_cloud SCENE_POINTS VOXEL OUT: a fruit-canopy cloud (apple explicit) whose number of fruit
+# and canopy are scaled for SCENE_POINTS points at 6.6 mm voxels (~50 neighbours within 0.015 m,
+# as the issue's 1M cloud), sampled at VOXEL; made once.
+canopy_cloud() {
+  local fruit scale canopy
+  fruit=$(awk -v n="$1" 'BEGIN { printf "%d", n / 790 + 0.5 }')
   scale=$(awk -v f="$fruit" 'BEGIN { printf "%.4f", (f / 283) ^ (1 / 3) }')
   canopy=$(awk -v s="$scale" 'BEGIN { printf "%.4f,%.4f,%.4f", 1.2 * s, 1.2 * s, 1.0 * s }')
+  [ -f "$3" ] || $b/pc_synth --species apple --voxel "$2" --fruit-count "$fruit" --canopy "$canopy" -o "$3"
+}
+
+for size in "${sizes[@]}"; do
+  # One density: the number of fruit and the canopy grow with the size.
   cloud="$data/canopy_$size.pcd"
-  [ -f "$cloud" ] || $b/pc_synth --species apple --voxel 0.0066 --fruit-count "$fruit" --canopy "$canopy" -o "$cloud"
+  canopy_cloud "$size" 0.0066 "$cloud"
   points=$(head -c 400 "$cloud" | awk '/^POINTS/ { print $2 }')
   label="$(awk -v p="$points" 'BEGIN { printf "%.2gM", p / 1e6 }')"
   bytes=$(stat -c %s "$cloud")
@@ -198,11 +205,8 @@ done
 # points. 0.0066 / 4^(1/3) m voxels on the 1M scene's fruit and canopy.
 if [[ " ${sizes[*]} " == *" 4000000 "* ]]; then
   size=4000000
-  fruit=$(awk 'BEGIN { printf "%d", 1000000 / 790 + 0.5 }')
-  scale=$(awk -v f="$fruit" 'BEGIN { printf "%.4f", (f / 283) ^ (1 / 3) }')
-  canopy=$(awk -v s="$scale" 'BEGIN { printf "%.4f,%.4f,%.4f", 1.2 * s, 1.2 * s, 1.0 * s }')
   cloud="$data/canopy_dense4x.pcd"
-  [ -f "$cloud" ] || $b/pc_synth --species apple --voxel 0.00416 --fruit-count "$fruit" --canopy "$canopy" -o "$cloud"
+  canopy_cloud 1000000 0.00416 "$cloud"
   points=$(head -c 400 "$cloud" | awk '/^POINTS/ { print $2 }')
   label="$(awk -v p="$points" 'BEGIN { printf "%.2gM", p / 1e6 }') (1M scene, 4x denser)"
   read -r s1 m1 <<<"$(ours dbscan_dense "$b/pc_dbscan --eps 0.015 --min-points 10 -i $cloud")"

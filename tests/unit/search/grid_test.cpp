@@ -29,11 +29,12 @@ std::vector<std::pair<double, std::uint32_t>> brute_knn(const Cloud& c, std::uin
     return all;
 }
 
-void expect_knn_matches_brute_force(const Cloud& c, std::size_t k, double cell) {
-    const Grid grid(c, cell);
+/// grid.knn(i) for every `stride`-th point equals the brute force over `c` (the grid's points,
+/// in its numbering).
+void expect_grid_knn_is_brute_force(const Grid& grid, const Cloud& c, std::size_t k, std::uint32_t stride = 1) {
     std::vector<std::uint32_t> idx;
     std::vector<double> d2;
-    for (std::uint32_t i = 0; i < c.size(); ++i) {
+    for (std::uint32_t i = 0; i < c.size(); i += stride) {
         grid.knn(i, k, idx, d2);
         if (!is_finite(c[i])) {
             EXPECT_TRUE(idx.empty());
@@ -46,6 +47,10 @@ void expect_knn_matches_brute_force(const Cloud& c, std::size_t k, double cell) 
             EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
         }
     }
+}
+
+void expect_knn_matches_brute_force(const Cloud& c, std::size_t k, double cell) {
+    expect_grid_knn_is_brute_force(Grid(c, cell), c, k);
 }
 
 TEST(Grid, KnnMatchesBruteForceOnRandomClouds) {
@@ -72,18 +77,7 @@ TEST(Grid, WorksOnAStridedViewWithFieldsInAnyOrder) {
     view.offset[1] = 12;
     view.offset[2] = 0;
     EXPECT_EQ(Grid::suggest_cell(view), Grid::suggest_cell(c));
-    const Grid grid(view, 0.1);
-    std::vector<std::uint32_t> idx;
-    std::vector<double> d2;
-    for (std::uint32_t i = 0; i < c.size(); ++i) {
-        grid.knn(i, 5, idx, d2);
-        const auto ref = brute_knn(c, i, 5);
-        ASSERT_EQ(idx.size(), ref.size());
-        for (std::size_t m = 0; m < ref.size(); ++m) {
-            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
-            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
-        }
-    }
+    expect_grid_knn_is_brute_force(Grid(view, 0.1), c, 5);
 }
 
 TEST(Grid, KnnMatchesBruteForceWhateverTheKeyWidthAndSortPasses) {
@@ -110,18 +104,7 @@ TEST(Grid, LargeCloudsAreSortedOnTwoThreadsWithTheSameNeighbours) {
     for (std::size_t i = 0; i < 2000; ++i) {
         c.push_back(c[7 * i]);
     }
-    const Grid grid(c, 1.0);
-    std::vector<std::uint32_t> idx;
-    std::vector<double> d2;
-    for (std::uint32_t i = 0; i < c.size(); i += 1201) {
-        grid.knn(i, 3, idx, d2);
-        const auto ref = brute_knn(c, i, 3);
-        ASSERT_EQ(idx.size(), ref.size());
-        for (std::size_t m = 0; m < ref.size(); ++m) {
-            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
-            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
-        }
-    }
+    expect_grid_knn_is_brute_force(Grid(c, 1.0), c, 3, 1201);
 }
 
 TEST(Grid, WorksOnASubsetOfAView) {
@@ -138,19 +121,10 @@ TEST(Grid, WorksOnASubsetOfAView) {
     const XyzView view = XyzView(c).subset(pick);
     ASSERT_EQ(view.size, pick.size());
     EXPECT_EQ(median_spacing(view), median_spacing(copy));
-    const Grid grid(view, 0.1);
-    std::vector<std::uint32_t> idx;
-    std::vector<double> d2;
     for (std::uint32_t i = 0; i < copy.size(); ++i) {
         EXPECT_EQ(view[i].x, copy[i].x);
-        grid.knn(i, 5, idx, d2);
-        const auto ref = brute_knn(copy, i, 5);
-        ASSERT_EQ(idx.size(), ref.size());
-        for (std::size_t m = 0; m < ref.size(); ++m) {
-            EXPECT_EQ(idx[m], ref[m].second) << "point " << i << " rank " << m;
-            EXPECT_EQ(d2[m], ref[m].first) << "point " << i << " rank " << m;
-        }
     }
+    expect_grid_knn_is_brute_force(Grid(view, 0.1), copy, 5);
     EXPECT_THROW((void)view.subset(pick), std::logic_error);  // no subset of a subset
 }
 
