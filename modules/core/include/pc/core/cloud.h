@@ -42,13 +42,14 @@ struct XyzView {
           size(cloud.size()) {}
 
     /// The points idx[0], idx[1], ... of this view (idx must outlive the result).
+    /// Not of a view that is itself a subset (std::logic_error): compose the indices instead.
     [[nodiscard]] XyzView subset(std::span<const std::uint32_t> idx) const {
-        XyzView v = *this;
-        v.size = idx.size();
-        v.index = idx.data();
         if (index != nullptr) {
             throw std::logic_error("XyzView::subset of a subset");
         }
+        XyzView v = *this;
+        v.size = idx.size();
+        v.index = idx.data();
         return v;
     }
 
