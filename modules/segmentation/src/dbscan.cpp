@@ -60,6 +60,25 @@ struct ConcurrentForest {
 /// Local component counts above this are not tracked (all pairs are then looked at).
 constexpr std::uint8_t kMany = 255;
 
+/// "Within eps of p" for the points of a sweep: p's coordinates read once, distances in double
+/// from the float coordinates as Grid::dist2 computes them.
+struct Near {
+    double x, y, z, eps2;
+    Near(const float* p, double e2) : x(p[0]), y(p[1]), z(p[2]), eps2(e2) {}
+    [[nodiscard]] bool operator()(const float* q) const {
+        const double ex = x - double{q[0]}, ey = y - double{q[1]}, ez = z - double{q[2]};
+        return ex * ex + ey * ey + ez * ez <= eps2;
+    }
+    /// How many of the points [q, q + 3 n) are within eps, stopping once `need` are found.
+    [[nodiscard]] std::uint32_t count(const float* q, std::uint32_t n, std::uint32_t need) const {
+        std::uint32_t found = 0;
+        for (std::uint32_t i = 0; i < n && found < need; ++i, q += 3) {
+            found += (*this)(q);
+        }
+        return found;
+    }
+};
+
 /// Joins the core points of one cell [b, e) that are within eps (sequential union-find on the
 /// cell's points, then written to the forest), numbers the local components 0..n-1 in `comp`
 /// and sets `count` to n (kMany when n > 64).
@@ -74,16 +93,24 @@ void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e
         }
         return x;
     };
-    for (std::uint32_t s = b; s < e; ++s) {
-        up[s - b] = s - b;
-        if (!core[s]) {
+    const float* xyz = grid.point(b);  // the cell's points, contiguous
+    std::uint32_t groups = 0;          // components among the core points seen so far
+    for (std::uint32_t s = 0; s < e - b; ++s) {
+        up[s] = s;
+        if (!core[b + s]) {
             continue;
         }
-        for (std::uint32_t t = b; t < s; ++t) {
-            if (core[t] && grid.dist2(s, t) <= eps2) {
-                const std::uint32_t rs = root(s - b), rt = root(t - b);
+        ++groups;
+        const Near near(xyz + 3 * s, eps2);
+        std::uint32_t rs = s;  // s's root, kept up to date: unions link under the smaller root
+        // Once everything seen is one component, s has nothing more to join.
+        for (std::uint32_t t = 0; t < s && groups > 1; ++t) {
+            if (core[b + t] && near(xyz + 3 * t)) {
+                const std::uint32_t rt = root(t);
                 if (rs != rt) {
                     up[std::max(rs, rt)] = std::min(rs, rt);
+                    rs = std::min(rs, rt);
+                    --groups;
                 }
             }
         }
@@ -150,16 +177,13 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         const std::uint32_t b = grid.cell_begin(c), e = grid.cell_end(c);
         for (std::uint32_t s = b; s < e; ++s) {
-            std::uint32_t found = 0;
-            for (std::uint32_t t = b; t < e && found < params.min_points; ++t) {
-                found += grid.dist2(s, t) <= eps2;
-            }
-            for (std::size_t k = 0; k < nb.size() && found < params.min_points; ++k) {
-                if (nb[k] == c) {
-                    continue;
-                }
-                for (std::uint32_t t = grid.cell_begin(nb[k]); t < grid.cell_end(nb[k]); ++t) {
-                    found += grid.dist2(s, t) <= eps2;
+            const Near near(grid.point(s), eps2);
+            const std::uint32_t need = params.min_points;
+            std::uint32_t found = near.count(grid.point(b), e - b, need);
+            for (std::size_t k = 0; k < nb.size() && found < need; ++k) {
+                if (nb[k] != c) {
+                    found += near.count(grid.point(grid.cell_begin(nb[k])), grid.cell_end(nb[k]) - grid.cell_begin(nb[k]),
+                                        need - found);
                 }
             }
             core[s] = found >= params.min_points;
@@ -201,13 +225,14 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                 if (!core[s]) {
                     continue;
                 }
+                const Near near(grid.point(s), eps2);
                 for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
                     if (!core[t]) {
                         continue;
                     }
                     const std::uint64_t bit =
                         track ? std::uint64_t{1} << (comp[s] * comps[nc] + comp[t]) : 0;
-                    if ((joined & bit) != 0 || grid.dist2(s, t) > eps2) {
+                    if ((joined & bit) != 0 || !near(grid.point(t))) {
                         continue;
                     }
                     forest.unite(s, t);
