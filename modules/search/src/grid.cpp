@@ -285,12 +285,13 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
     //    bytes per point) live in xyz_'s storage (3 floats per point), allocated once here: the
     //    grid's build needs no block beside its own arrays. 64-bit keys: their own scratch.
     const auto sort_points = [&](auto* keys, auto* k2, std::uint32_t* i2) {
+        using Key = std::remove_reference_t<decltype(*keys)>;
+        const auto key_of = [&](const pcl::PointXYZ& p) { return static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2))); };
         if (n == cloud.size) {  // all finite (the usual case): in parallel
             const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
             for (std::int64_t i = 0; i < count; ++i) {
-                const pcl::PointXYZ p = cloud[static_cast<std::size_t>(i)];
-                keys[i] = static_cast<std::remove_reference_t<decltype(*keys)>>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                keys[i] = key_of(cloud[static_cast<std::size_t>(i)]);
                 order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
             }
         } else {
@@ -298,7 +299,7 @@ Grid::Grid(const XyzView& cloud, double cell) : cell_(cell), points_(cloud) {
             for (std::uint32_t i = 0; i < cloud.size; ++i) {
                 const pcl::PointXYZ p = cloud[i];
                 if (is_finite(p)) {
-                    keys[at] = static_cast<std::remove_reference_t<decltype(*keys)>>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)));
+                    keys[at] = key_of(p);
                     order_[at++] = i;
                 }
             }
