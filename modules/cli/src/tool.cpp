@@ -439,7 +439,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                              "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)");
     }
     common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
-                         cloud_out ? "output cloud ('-' = stdout); written to a temporary file and renamed"
+                         cloud_out ? "output cloud ('-' = stdout); a file is written to a temporary file and renamed, a device or FIFO directly"
                                    : "output report ('-' = stdout)");
     if (im.reads) {
         common.add_options()("max-input-bytes",
