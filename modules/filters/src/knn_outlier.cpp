@@ -30,25 +30,30 @@ namespace {
 constexpr double kOccupancy = 16.0;
 }  // namespace
 
-KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params) {
+double cell_for_knn(const XyzView& points) {
+    return search::Grid::suggest_cell(points, kOccupancy);
+}
+
+std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k) {
+    std::vector<double> mean(n, std::numeric_limits<double>::infinity());
+    grid.all_knn(k, [&](std::uint32_t i, const std::vector<std::uint32_t>&, const std::vector<double>& d2) {
+        if (d2.empty()) {
+            return;
+        }
+        double sum = 0;
+        for (double v : d2) {
+            sum += std::sqrt(v);
+        }
+        mean[i] = sum / static_cast<double>(d2.size());
+    });
+    return mean;
+}
+
+KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlierParams& params) {
     params.validate();
-    const std::size_t n = points.size;
+    const std::size_t n = mean_distance.size();
     KnnOutlierResult r;
-    r.mean_distance.assign(n, std::numeric_limits<double>::infinity());
-    {  // the grid is freed before the flags are allocated and the scores copied: peak memory
-        const search::Grid grid(points, search::Grid::suggest_cell(points, kOccupancy));
-        grid.all_knn(params.k, [&](std::uint32_t i, const std::vector<std::uint32_t>&,
-                                   const std::vector<double>& d2) {
-            if (d2.empty()) {
-                return;
-            }
-            double sum = 0;
-            for (double v : d2) {
-                sum += std::sqrt(v);
-            }
-            r.mean_distance[i] = sum / static_cast<double>(d2.size());
-        });
-    }
+    r.mean_distance = std::move(mean_distance);
     r.outlier.assign(n, 1);
     std::vector<double> finite;
     finite.reserve(n);
@@ -81,6 +86,16 @@ KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& para
         r.outlier[i] = !std::isfinite(v) || (!none && v >= r.threshold);
     }
     return r;
+}
+
+KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params) {
+    params.validate();
+    std::vector<double> mean;
+    {  // the grid is freed before the flags are allocated and the scores copied: peak memory
+        const search::Grid grid(points, cell_for_knn(points));
+        mean = knn_mean_distance(grid, points.size, params.k);
+    }
+    return knn_outlier(std::move(mean), params);
 }
 
 }  // namespace pc::filters

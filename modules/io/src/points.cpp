@@ -79,6 +79,25 @@ XyzPoints::XyzPoints(const Blob& blob) {
     }
 }
 
+std::optional<XyzRecords> xyz_records(Blob& blob) {
+    const Field* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
+    for (int a = 0; a < 3; ++a) {
+        if (axes[a] == nullptr || axes[a]->datatype != Field::FLOAT32 || axes[a]->count != 1 ||
+            axes[a]->offset != axes[0]->offset + 4 * static_cast<std::uint32_t>(a)) {
+            return std::nullopt;
+        }
+    }
+    XyzRecords r;
+    r.base = blob.cloud.data.data();
+    r.stride = blob.cloud.point_step;
+    r.size = blob.size();
+    r.offset = axes[0]->offset;
+    if (r.stride % 4 != 0 || r.offset % 4 != 0 || reinterpret_cast<std::uintptr_t>(r.base) % 4 != 0) {
+        return std::nullopt;
+    }
+    return r;
+}
+
 void XyzPoints::release() {
     view_ = XyzView();
     Cloud().swap(copy_);

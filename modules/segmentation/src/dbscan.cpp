@@ -69,10 +69,11 @@ struct Near {
         const double ex = x - double{q[0]}, ey = y - double{q[1]}, ez = z - double{q[2]};
         return ex * ex + ey * ey + ez * ez <= eps2;
     }
-    /// How many of the points [q, q + 3 n) are within eps, stopping once `need` are found.
-    [[nodiscard]] std::uint32_t count(const float* q, std::uint32_t n, std::uint32_t need) const {
+    /// How many of the n points at q, q + stride, ... are within eps, stopping once `need` are
+    /// found.
+    [[nodiscard]] std::uint32_t count(const float* q, std::size_t stride, std::uint32_t n, std::uint32_t need) const {
         std::uint32_t found = 0;
-        for (std::uint32_t i = 0; i < n && found < need; ++i, q += 3) {
+        for (std::uint32_t i = 0; i < n && found < need; ++i, q += stride) {
             found += (*this)(q);
         }
         return found;
@@ -93,7 +94,8 @@ void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e
         }
         return x;
     };
-    const float* xyz = grid.point(b);  // the cell's points, contiguous
+    const float* xyz = grid.point(b);  // the cell's points, one stride apart
+    const std::size_t stride = grid.point_stride();
     std::uint32_t groups = 0;          // components among the core points seen so far
     for (std::uint32_t s = 0; s < e - b; ++s) {
         up[s] = s;
@@ -101,11 +103,11 @@ void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e
             continue;
         }
         ++groups;
-        const Near near(xyz + 3 * s, eps2);
+        const Near near(xyz + stride * s, eps2);
         std::uint32_t rs = s;  // s's root, kept up to date: unions link under the smaller root
         // Once everything seen is one component, s has nothing more to join.
         for (std::uint32_t t = 0; t < s && groups > 1; ++t) {
-            if (core[b + t] && near(xyz + 3 * t)) {
+            if (core[b + t] && near(xyz + stride * t)) {
                 const std::uint32_t rt = root(t);
                 if (rs != rt) {
                     up[std::max(rs, rt)] = std::min(rs, rt);
@@ -172,6 +174,7 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     //    points of each cell are joined among themselves (a cell-local union-find, written to the
     //    forest: nobody else reads these entries in this pass) and numbered by local component.
     ConcurrentForest forest(m);
+    const std::size_t stride = grid.point_stride();
     std::vector<std::uint8_t> comp(m, 0);               // local component of a core point
     std::vector<std::uint8_t> comps(grid.cell_count());  // per cell; kMany = too many to track
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
@@ -179,11 +182,11 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
         for (std::uint32_t s = b; s < e; ++s) {
             const Near near(grid.point(s), eps2);
             const std::uint32_t need = params.min_points;
-            std::uint32_t found = near.count(grid.point(b), e - b, need);
+            std::uint32_t found = near.count(grid.point(b), stride, e - b, need);
             for (std::size_t k = 0; k < nb.size() && found < need; ++k) {
                 if (nb[k] != c) {
-                    found += near.count(grid.point(grid.cell_begin(nb[k])), grid.cell_end(nb[k]) - grid.cell_begin(nb[k]),
-                                        need - found);
+                    found += near.count(grid.point(grid.cell_begin(nb[k])), stride,
+                                        grid.cell_end(nb[k]) - grid.cell_begin(nb[k]), need - found);
                 }
             }
             core[s] = found >= params.min_points;

@@ -1,3 +1,9 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <random>
+
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
@@ -47,6 +53,54 @@ TEST(Steps, DbscanAddsALabelFieldAndKnnCanMark) {
     const Step m = apply_knn_outlier(in, {.k = 2}, {.mark_field = "outlier"});
     EXPECT_EQ(m.blob.size(), 20u);
     EXPECT_NE(io::find_field(m.blob, "outlier"), nullptr);
+}
+
+/// Blobs of short random walks (steps of at most 0.005 per axis, broken every 7th point by a
+/// scattered one; some NaN): x y z only (the grids sort these records in place) and x y z + 2
+/// more fields (the grids copy x y z out).
+std::pair<io::Blob, io::Blob> thin_and_rich_blobs(std::size_t n) {
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<double> centre(-1, 1), off(-0.05, 0.05);
+    std::vector<std::array<double, 3>> p(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        if (i % 500 == 0 || i % 7 == 3) {  // a new centre, or a scattered point
+            p[i] = {centre(rng), centre(rng), centre(rng)};
+        } else {
+            p[i] = {p[i - 1][0] + off(rng) * 0.1, p[i - 1][1] + off(rng) * 0.1, p[i - 1][2] + off(rng) * 0.1};
+        }
+    }
+    const auto xyz = [&](std::size_t i, std::size_t k, std::uint32_t) {
+        return i % 997 == 5 ? std::nan("") : k < 3 ? p[i][k] : static_cast<double>(i);
+    };
+    io::Blob thin = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}}, n, 1, xyz);
+    io::Blob rich = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
+                                     {"quality", F::FLOAT64}, {"id", F::UINT32}},
+                                    n, 1, xyz);
+    return {thin, rich};
+}
+
+TEST(Steps, ThinPointsSortedInPlaceGiveTheSameResultsInTheSameOrder) {
+    // DBSCAN and kNN sort x y z-only points where they are and put them back; the results, and
+    // every byte of the points, equal those of the copying path on the richer cloud.
+    const auto [thin, rich] = thin_and_rich_blobs(30000);
+    const auto same_points = [&](const io::Blob& out) {
+        for (std::size_t i = 0; i < thin.size(); ++i) {
+            ASSERT_EQ(0, std::memcmp(&out.cloud.data[i * out.cloud.point_step], &thin.cloud.data[i * 12], 12))
+                << "point " << i;
+        }
+    };
+    const Step d_thin = apply_dbscan(thin, {.eps = 0.02, .min_points = 5});
+    const Step d_rich = apply_dbscan(rich, {.eps = 0.02, .min_points = 5});
+    same_points(d_thin.blob);
+    EXPECT_EQ(io::labels(d_thin.blob), io::labels(d_rich.blob));
+    EXPECT_EQ(d_thin.note, d_rich.note);
+    const auto labels = io::labels(d_thin.blob);
+    EXPECT_GT(*std::max_element(labels.begin(), labels.end()), 100u);  // clusters were found
+    const Step k_thin = apply_knn_outlier(thin, {.k = 4}, {.mark_field = "outlier"});
+    const Step k_rich = apply_knn_outlier(rich, {.k = 4}, {.mark_field = "outlier"});
+    same_points(k_thin.blob);
+    EXPECT_EQ(io::labels(k_thin.blob, "outlier"), io::labels(k_rich.blob, "outlier"));
+    EXPECT_EQ(k_thin.note, k_rich.note);
 }
 
 TEST(Steps, EmptyCloudFlowsThroughTheWholeChain) {

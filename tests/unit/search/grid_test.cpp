@@ -265,6 +265,114 @@ TEST(Grid, AllKnnMatchesBruteForceAcrossDensities) {
     }
 }
 
+/// The points of `c` as records of `stride` bytes with x y z at byte `offset`; every other byte
+/// holds a pattern of the point's index, so that a record moved in part would show.
+std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride, std::uint32_t offset) {
+    std::vector<std::uint8_t> bytes(c.size() * stride);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        std::uint8_t* r = &bytes[i * stride];
+        for (std::size_t b = 0; b < stride; ++b) {
+            r[b] = static_cast<std::uint8_t>(i * 131 + b * 7 + (i >> 8));
+        }
+        std::memcpy(r + offset, &c[i].x, 4);
+        std::memcpy(r + offset + 4, &c[i].y, 4);
+        std::memcpy(r + offset + 8, &c[i].z, 4);
+    }
+    return bytes;
+}
+
+/// Checks an in-place grid over `c` (as records of `stride` bytes, x at `offset`) against the
+/// copying grid: the records are whole and in cell order, the answers are the same, and
+/// restore_order() gives back the original bytes.
+void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset) {
+    SCOPED_TRACE("stride " + std::to_string(stride) + ", cell " + std::to_string(cell));
+    std::vector<std::uint8_t> bytes = records_of(c, stride, offset);
+    const std::vector<std::uint8_t> original = bytes;
+    const XyzRecords records{bytes.data(), stride, c.size(), offset};
+    const Grid copy(c, cell);
+    Grid grid(Grid::kInPlace, records, cell);
+    ASSERT_EQ(grid.finite_count(), copy.finite_count());
+    ASSERT_EQ(grid.cell_count(), copy.cell_count());
+    EXPECT_EQ(grid.point_stride(), stride / 4);
+    for (std::uint32_t s = 0; s < grid.finite_count(); ++s) {
+        // Each sorted record is a whole original one, its coordinates where point() says.
+        const std::uint32_t i = grid.index_of(s);
+        ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[i * stride], stride)) << "position " << s;
+        EXPECT_EQ(grid.point(s), reinterpret_cast<const float*>(&bytes[s * stride + offset]));
+    }
+    for (std::size_t k = 0; k < grid.cell_count(); ++k) {
+        // The same cells, holding the same points (the order within a cell may differ).
+        std::vector<std::uint32_t> a, b;
+        for (std::uint32_t s = grid.cell_begin(k); s < grid.cell_end(k); ++s) {
+            a.push_back(grid.index_of(s));
+        }
+        for (std::uint32_t s = copy.cell_begin(k); s < copy.cell_end(k); ++s) {
+            b.push_back(copy.index_of(s));
+        }
+        std::sort(a.begin(), a.end());
+        std::sort(b.begin(), b.end());
+        ASSERT_EQ(a, b) << "cell " << k;
+    }
+    std::vector<std::uint32_t> idx_a, idx_b;
+    std::vector<double> d2_a, d2_b;
+    for (std::size_t i = 0; i < c.size(); i += 97) {
+        grid.knn_point(c[i], 6, idx_a, d2_a);
+        copy.knn_point(c[i], 6, idx_b, d2_b);
+        EXPECT_EQ(idx_a, idx_b) << "query " << i;
+        EXPECT_EQ(d2_a, d2_b) << "query " << i;
+    }
+    std::vector<std::vector<std::uint32_t>> all_a(c.size()), all_b(c.size());
+    grid.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx, const std::vector<double>&) { all_a[i] = idx; });
+    copy.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx, const std::vector<double>&) { all_b[i] = idx; });
+    EXPECT_EQ(all_a, all_b);
+    EXPECT_THROW(grid.knn(0, 3, idx_a, d2_a), std::logic_error);  // the records have moved
+    grid.restore_order(records);
+    EXPECT_EQ(bytes, original);
+}
+
+TEST(Grid, InPlaceSortsWholeRecordsAnswersAsTheCopyAndPutsThemBack) {
+    // Records of x y z only, + 2 fields (the sort's fixed sizes), and of an odd size with x
+    // not first (the general path); NaN points go after the finite ones.
+    Cloud c = mixed_density_cloud();
+    c.push_back(test::nan_point());
+    c.push_back(c[3]);  // a duplicate
+    for (const auto& [stride, offset] : {std::pair<std::size_t, std::uint32_t>{12, 0}, {20, 8}, {44, 16}}) {
+        for (double cell : {0.005, 0.02}) {
+            expect_in_place_grid_equals_copy(c, cell, stride, offset);
+        }
+    }
+}
+
+TEST(Grid, InPlaceSortsFewRecordsWithRepeatedKeys) {
+    // Cells z = 0, 2, 0: three keys spanning exactly 3 values, not distinct (only putting
+    // records back, by their distinct original indices, may place them by key directly).
+    Cloud c;
+    c.push_back({0, 0, 0.1f});
+    c.push_back({0, 0, 2.5f});
+    c.push_back({0, 0, 0.2f});
+    expect_in_place_grid_equals_copy(c, 1.0, 12, 0);
+}
+
+TEST(Grid, InPlaceSortsLargeCloudsAndWideKeys) {
+    // 70000 points: more than a cache-sized bucket, so the in-place radix levels (and their two
+    // threads) run before the buckets are sorted aside; 2e-4 cells in a unit cube: 39-bit keys.
+    const Cloud c = test::uniform(70000, 1.0f, 13);
+    expect_in_place_grid_equals_copy(c, 0.01, 16, 0);
+    expect_in_place_grid_equals_copy(test::uniform(3000, 1.0f, 14), 2e-4, 12, 0);
+}
+
+TEST(Grid, InPlaceChecksItsRecords) {
+    const Cloud c = test::uniform(50, 1.0f, 3);
+    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    EXPECT_THROW(Grid(Grid::kInPlace, XyzRecords{bytes.data(), 14, 50, 0}, 0.1), std::logic_error);
+    EXPECT_THROW(Grid(Grid::kInPlace, XyzRecords{bytes.data(), 16, 50, 6}, 0.1), std::logic_error);
+    Grid grid(Grid::kInPlace, XyzRecords{bytes.data(), 16, 50, 0}, 0.1);
+    std::vector<std::uint8_t> other = bytes;
+    EXPECT_THROW(grid.restore_order(XyzRecords{other.data(), 16, 50, 0}), std::logic_error);
+    const Grid copy(c, 0.1);
+    EXPECT_THROW(const_cast<Grid&>(copy).restore_order(XyzRecords{bytes.data(), 16, 50, 0}), std::logic_error);
+}
+
 /// Mean over the points of how many points share their cell.
 double point_occupancy(const Cloud& c, double cell) {
     std::map<std::tuple<long, long, long>, int> count;

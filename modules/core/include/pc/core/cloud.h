@@ -63,4 +63,25 @@ struct XyzView {
     }
 };
 
+/// The points of a cloud's own memory, which Grid's in-place constructor may reorder: `size`
+/// records of `stride` bytes at `base`, each with x, y, z as consecutive floats at byte `offset`
+/// (stride and offset multiples of 4, base 4-aligned). Records are moved whole.
+struct XyzRecords {
+    std::uint8_t* base = nullptr;
+    std::size_t stride = 0;
+    std::size_t size = 0;
+    std::uint32_t offset = 0;  ///< byte offset of x (y at + 4, z at + 8)
+
+    [[nodiscard]] XyzView view() const {
+        XyzView v;
+        v.base = base;
+        v.stride = stride;
+        v.size = size;
+        v.offset[0] = offset;
+        v.offset[1] = offset + 4;
+        v.offset[2] = offset + 8;
+        return v;
+    }
+};
+
 }  // namespace pc

@@ -6,6 +6,10 @@
 
 #include <pc/core/cloud.h>
 
+namespace pc::search {
+class Grid;
+}  // namespace pc::search
+
 namespace pc::filters {
 
 /// Parameters of knn_outlier(). Score = mean distance to the k nearest other points.
@@ -32,5 +36,15 @@ struct KnnOutlierResult {
 [[nodiscard]] inline KnnOutlierResult knn_outlier(const Cloud& cloud, const KnnOutlierParams& params) {
     return knn_outlier(XyzView(cloud), params);
 }
+
+// knn_outlier() in two steps, for a caller that builds the grid itself (e.g. one sorting the
+// cloud in place, which it restores before the second step: the flags then cost no more memory).
+/// The grid cell knn_outlier() uses for these points.
+[[nodiscard]] double cell_for_knn(const XyzView& points);
+/// Each of the n points' mean distance to its k nearest other points (+inf when non-finite or
+/// alone), over a grid built on them (cells of any size; cell_for_knn() is the fastest).
+[[nodiscard]] std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k);
+/// The threshold and flags from those scores (the result keeps them as mean_distance).
+[[nodiscard]] KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlierParams& params);
 
 }  // namespace pc::filters

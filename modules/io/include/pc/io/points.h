@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,11 @@ private:
     Cloud copy_;
     XyzView view_;
 };
+
+/// The blob's points as records a grid may sort in place (search::Grid::kInPlace): when x, y, z
+/// are F 4 at consecutive 4-aligned offsets and point_step is a multiple of 4 (as PCL and these
+/// tools write them); nothing otherwise (then XyzPoints). The blob must outlive the records.
+[[nodiscard]] std::optional<XyzRecords> xyz_records(Blob& blob);
 
 /// A colour with channels in [0, 1].
 struct Rgb {

@@ -33,6 +33,20 @@ public:
     /// release_cloud() is called).
     Grid(const Cloud& cloud, double cell) : Grid(XyzView(cloud), cell) {}
 
+    /// Selects the constructor that sorts a cloud's own records instead of copying them.
+    struct InPlace {};
+    static constexpr InPlace kInPlace{};
+    /// Builds the grid by sorting `records` themselves into cell order (whole records, with
+    /// non-finite points moved after the finite ones), and reads the coordinates there: no copy
+    /// of the points (12 bytes each), which on an x y z-only cloud is the size of the cloud.
+    /// The records stay in grid order until restore_order() puts them back; meanwhile they must
+    /// not move or be written, and knn(i) is not available (as after release_cloud()).
+    Grid(InPlace, const XyzRecords& records, double cell);
+    /// Puts the records an in-place grid sorted back in their original order and frees the grid
+    /// (no call but finite_count() is valid afterwards). Also after release_all_but_order().
+    /// `records` must be the ones the grid was built from (std::logic_error otherwise).
+    void restore_order(const XyzRecords& records);
+
     /// A cell side giving about `target` points per occupied cell (adapts to surfaces and lines:
     /// the occupancy is measured, not assumed).
     [[nodiscard]] static double suggest_cell(const XyzView& points, double target = 4.0);
@@ -82,13 +96,17 @@ public:
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
     /// Original cloud index of sorted position s.
     [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return order_[s]; }
-    /// Coordinates (x, y, z) of sorted position s.
-    [[nodiscard]] const float* point(std::uint32_t s) const { return &xyz_[3 * s]; }
+    /// Coordinates (x, y, z) of sorted position s; position s + 1 is point_stride() floats on.
+    [[nodiscard]] const float* point(std::uint32_t s) const { return xyz_at_ + stride_ * s; }
+    /// Floats from one sorted position's coordinates to the next (3 unless built in place).
+    [[nodiscard]] std::size_t point_stride() const { return stride_; }
     /// Squared distance between sorted positions s and t, in double.
     [[nodiscard]] double dist2(std::uint32_t s, std::uint32_t t) const {
-        const double ex = double{xyz_[3 * s]} - xyz_[3 * t];
-        const double ey = double{xyz_[3 * s + 1]} - xyz_[3 * t + 1];
-        const double ez = double{xyz_[3 * s + 2]} - xyz_[3 * t + 2];
+        const float* a = point(s);
+        const float* b = point(t);
+        const double ex = double{a[0]} - b[0];
+        const double ey = double{a[1]} - b[1];
+        const double ez = double{a[2]} - b[2];
         return ex * ex + ey * ey + ez * ez;
     }
 
@@ -100,13 +118,18 @@ public:
     /// finite_count() (the only calls left valid): for a caller done searching that still maps
     /// sorted positions back to indices while it allocates its result.
     void release_all_but_order();
-    [[nodiscard]] std::size_t finite_count() const { return order_.size(); }
+    [[nodiscard]] std::size_t finite_count() const { return finite_; }
 
 private:
     struct Cell {
         std::uint64_t key;
         std::uint32_t begin, end;
     };
+    /// Checks the cell, sets the origin, dimensions and key bits; returns the finite points.
+    std::size_t set_frame(const XyzView& points, double cell);
+    /// Cells and rows from the n sorted keys (step 2 of a build), then the row table.
+    template <class Key>
+    void index_sorted(const Key* sorted, std::size_t n);
     [[nodiscard]] std::int64_t coord(float v, int axis) const;
     /// Cell key: x, y, z packed with the fewest bits each axis needs (sorting by key = by x, y, z).
     [[nodiscard]] std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
@@ -150,8 +173,14 @@ private:
     std::vector<std::uint32_t> row_begin_;  // first cell of each distinct (x, y) row, + sentinel
     std::vector<std::uint64_t> row_key_;    // key >> bits_[2] of each row
     std::vector<std::uint32_t> row_table_;  // open addressing on row keys: row index + 1
-    std::vector<float> xyz_;              // sorted by cell, 3 floats per point
-    std::vector<std::uint32_t> order_;    // original index of each sorted point
+    std::vector<float> xyz_;              // sorted by cell, 3 floats per point (unless in place)
+    const float* xyz_at_ = nullptr;       // x of sorted position 0: xyz_, or the sorted records
+    std::size_t stride_ = 3;              // floats from one sorted position to the next
+    std::vector<std::uint32_t> order_;    // original index of each sorted point (in place: all
+                                          // points, the non-finite ones after finite_count())
+    std::size_t finite_ = 0;
+    XyzRecords sorted_;                   // the records sorted in place, if in_place_
+    bool in_place_ = false;
     std::vector<Cell> cells_;
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
@@ -169,9 +198,10 @@ void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
             const auto [first, last] = row_span(cx + dx, cy + dy, cz - 1, cz + 1);
             for (const Cell* cell = first; cell < last; ++cell) {
                 for (std::uint32_t s = cell->begin; s < cell->end; ++s) {
-                    const double ex = double{xyz_[3 * s]} - q.x;
-                    const double ey = double{xyz_[3 * s + 1]} - q.y;
-                    const double ez = double{xyz_[3 * s + 2]} - q.z;
+                    const float* p = point(s);
+                    const double ex = double{p[0]} - q.x;
+                    const double ey = double{p[1]} - q.y;
+                    const double ez = double{p[2]} - q.z;
                     const double d2 = ex * ex + ey * ey + ez * ez;
                     if (d2 <= r2) {
                         f(order_[s], d2);

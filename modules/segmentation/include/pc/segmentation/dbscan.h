@@ -36,10 +36,12 @@ struct DbscanResult {
 [[nodiscard]] DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params);
 
 /// The same over a grid already built on the cloud (n points) with cells of at least eps, so
-/// that a caller can free the cloud first (the grid keeps its own sorted copy of the points).
+/// that a caller can free the cloud first (the grid keeps its own sorted copy of the points) or
+/// have the grid sort the cloud in place (Grid::kInPlace).
 [[nodiscard]] DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams& params);
 /// The same, taking the grid: its coordinates and cells are freed before the result is
-/// allocated (release_all_but_order), so the result does not add to the clustering's peak.
+/// allocated (release_all_but_order), so the result does not add to the clustering's peak. The
+/// grid keeps its order: an in-place grid's restore_order() is still to be called.
 [[nodiscard]] DbscanResult dbscan(search::Grid&& grid, std::size_t n, const DbscanParams& params);
 
 /// eps from the knee of the sorted distances to the (min_points − 1)-th nearest other point (the
