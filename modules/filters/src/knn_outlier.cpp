@@ -55,23 +55,24 @@ KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlier
     KnnOutlierResult r;
     r.mean_distance = std::move(mean_distance);
     r.outlier.assign(n, 1);
-    std::vector<double> finite;
-    finite.reserve(n);
-    for (double v : r.mean_distance) {
-        if (std::isfinite(v)) {
-            finite.push_back(v);
-        }
-    }
+    // The scores' statistics are taken where they are: a copy of them (8 bytes a point) was
+    // the largest block of the step.
     if (params.std_mul) {
         double mean = 0, sq = 0;
-        for (double v : finite) {
-            mean += v;
+        std::size_t finite = 0;
+        for (double v : r.mean_distance) {
+            if (std::isfinite(v)) {
+                mean += v;
+                ++finite;
+            }
         }
-        mean /= std::max<std::size_t>(finite.size(), 1);
-        for (double v : finite) {
-            sq += (v - mean) * (v - mean);
+        mean /= static_cast<double>(std::max<std::size_t>(finite, 1));
+        for (double v : r.mean_distance) {
+            if (std::isfinite(v)) {
+                sq += (v - mean) * (v - mean);
+            }
         }
-        const double sigma = finite.size() > 1 ? std::sqrt(sq / static_cast<double>(finite.size() - 1)) : 0.0;
+        const double sigma = finite > 1 ? std::sqrt(sq / static_cast<double>(finite - 1)) : 0.0;
         r.threshold = mean + *params.std_mul * sigma;
         for (std::size_t i = 0; i < n; ++i) {
             r.outlier[i] = !(r.mean_distance[i] <= r.threshold);
@@ -80,7 +81,7 @@ KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlier
     }
     const bool none = params.drop_percentile == 0;
     r.threshold = none ? std::numeric_limits<double>::infinity()
-                       : percentile(finite, 100.0 - params.drop_percentile);
+                       : percentile_of_finite(r.mean_distance, 100.0 - params.drop_percentile);
     for (std::size_t i = 0; i < n; ++i) {
         const double v = r.mean_distance[i];
         r.outlier[i] = !std::isfinite(v) || (!none && v >= r.threshold);
@@ -91,7 +92,7 @@ KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlier
 KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params) {
     params.validate();
     std::vector<double> mean;
-    {  // the grid is freed before the flags are allocated and the scores copied: peak memory
+    {  // the grid is freed before the flags are allocated: peak memory
         const search::Grid grid(points, cell_for_knn(points));
         mean = knn_mean_distance(grid, points.size, params.k);
     }
