@@ -165,6 +165,33 @@ std::vector<std::uint32_t> labels(const Blob& blob, const std::string& name) {
     return out;
 }
 
+namespace {
+
+/// For sorted (group, value) votes (group_of(vote) reads the group; equal votes are equal
+/// entries): calls found(group, vote) once a group with its most frequent vote, ties to the
+/// first (the smallest value).
+template <class Vote, class GroupOf, class Found>
+void for_each_mode(const std::vector<Vote>& votes, GroupOf group_of, Found found) {
+    for (std::size_t r = 0; r < votes.size();) {
+        const std::uint32_t g = group_of(votes[r]);
+        std::size_t best = 0, best_at = r;
+        while (r < votes.size() && group_of(votes[r]) == g) {
+            std::size_t run = r;
+            while (run < votes.size() && votes[run] == votes[r]) {
+                ++run;
+            }
+            if (run - r > best) {  // ascending values: ties keep the smallest
+                best = run - r;
+                best_at = r;
+            }
+            r = run;
+        }
+        found(g, votes[best_at]);
+    }
+}
+
+}  // namespace
+
 Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::uint32_t group_count) {
     const std::size_t n = blob.size();
     if (group.size() != n) {
@@ -183,41 +210,42 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
     }
     const std::uint8_t* src = blob.cloud.data.data();
     std::uint8_t* dst = out.cloud.data.data();
+    // One accumulator a group, reused for every real element and colour channel in turn (one
+    // per channel at once was 32 bytes a group: with a voxel a point, more than the cloud).
+    std::vector<double> sum;
+    const auto add_up = [&](auto value_of) {
+        sum.assign(group_count, 0.0);
+        for (std::size_t i = 0; i < n; ++i) {
+            if (group[i] != kNoGroup) {
+                sum[group[i]] += value_of(src + i * step);
+            }
+        }
+    };
     for (const Field& f : blob.cloud.fields) {
         if (f.name == "_") {
             continue;
         }
         const std::size_t es = type_size(f.datatype);
         if (is_packed_colour(f)) {
-            std::vector<std::array<double, 4>> sum(group_count, {0, 0, 0, 0});
-            for (std::size_t i = 0; i < n; ++i) {
-                if (group[i] == kNoGroup) {
-                    continue;
+            for (int c = 0; c < 4; ++c) {
+                add_up([&](const std::uint8_t* p) {
+                    std::uint32_t w;
+                    std::memcpy(&w, p + f.offset, 4);
+                    return static_cast<double>((w >> (8 * c)) & 0xff);
+                });
+                for (std::uint32_t g = 0; g < group_count; ++g) {
+                    std::uint32_t w;
+                    std::memcpy(&w, dst + g * step + f.offset, 4);
+                    w |= static_cast<std::uint32_t>(std::lround(sum[g] / members[g])) << (8 * c);
+                    std::memcpy(dst + g * step + f.offset, &w, 4);
                 }
-                std::uint32_t w;
-                std::memcpy(&w, src + i * step + f.offset, 4);
-                for (int c = 0; c < 4; ++c) {
-                    sum[group[i]][c] += static_cast<double>((w >> (8 * c)) & 0xff);
-                }
-            }
-            for (std::uint32_t g = 0; g < group_count; ++g) {
-                std::uint32_t w = 0;
-                for (int c = 0; c < 4; ++c) {
-                    w |= static_cast<std::uint32_t>(std::lround(sum[g][c] / members[g])) << (8 * c);
-                }
-                std::memcpy(dst + g * step + f.offset, &w, 4);
             }
             continue;
         }
         for (std::uint32_t e = 0; e < f.count; ++e) {
             const std::size_t off = f.offset + e * es;
             if (is_real(f.datatype)) {
-                std::vector<double> sum(group_count, 0.0);
-                for (std::size_t i = 0; i < n; ++i) {
-                    if (group[i] != kNoGroup) {
-                        sum[group[i]] += value_as_double(src + i * step + off, f.datatype);
-                    }
-                }
+                add_up([&](const std::uint8_t* p) { return value_as_double(p + off, f.datatype); });
                 for (std::uint32_t g = 0; g < group_count; ++g) {
                     const double mean = sum[g] / members[g];
                     if (f.datatype == Field::FLOAT32) {
@@ -230,7 +258,32 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
                 continue;
             }
             // Integer fields (labels, ids, classes): the most frequent value, ties to the smallest.
-            // Sort (group, value) pairs and scan the runs.
+            // Sort (group, value) pairs and scan the runs; values of up to 4 bytes ride in one
+            // word with their group (8 bytes a point, not 16).
+            if (es <= 4) {
+                std::vector<std::uint64_t> votes;
+                votes.reserve(n);
+                const bool is_signed = f.datatype == Field::INT8 || f.datatype == Field::INT16 || f.datatype == Field::INT32;
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (group[i] != kNoGroup) {
+                        // value_as_double is exact for these types; signed values are offset
+                        // so that the word orders as the value does.
+                        const double v = value_as_double(src + i * step + off, f.datatype);
+                        const auto ordered = static_cast<std::uint32_t>(
+                            is_signed ? static_cast<std::int64_t>(v) + (std::int64_t{1} << 31) : static_cast<std::int64_t>(v));
+                        votes.push_back((std::uint64_t{group[i]} << 32) | ordered);
+                    }
+                }
+                std::sort(votes.begin(), votes.end());
+                for_each_mode(votes, [&](std::uint64_t w) { return static_cast<std::uint32_t>(w >> 32); },
+                              [&](std::uint32_t g, std::uint64_t w) {
+                                  const auto ordered = static_cast<std::uint32_t>(w);
+                                  const double v = is_signed ? static_cast<double>(static_cast<std::int64_t>(ordered) - (std::int64_t{1} << 31))
+                                                             : static_cast<double>(ordered);
+                                  store_integer(v, f.datatype, dst + g * step + off);
+                              });
+                continue;
+            }
             std::vector<std::pair<std::uint32_t, double>> votes;
             votes.reserve(n);
             for (std::size_t i = 0; i < n; ++i) {
@@ -239,23 +292,8 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
                 }
             }
             std::sort(votes.begin(), votes.end());
-            for (std::size_t r = 0; r < votes.size();) {
-                const std::uint32_t g = votes[r].first;
-                std::size_t best = 0;
-                double best_value = 0;
-                while (r < votes.size() && votes[r].first == g) {
-                    std::size_t run = r;
-                    while (run < votes.size() && votes[run] == votes[r]) {
-                        ++run;
-                    }
-                    if (run - r > best) {  // ascending values: ties keep the smallest
-                        best = run - r;
-                        best_value = votes[r].second;
-                    }
-                    r = run;
-                }
-                store_integer(best_value, f.datatype, dst + g * step + off);
-            }
+            for_each_mode(votes, [](const auto& v) { return v.first; },
+                          [&](std::uint32_t g, const auto& v) { store_integer(v.second, f.datatype, dst + g * step + off); });
         }
     }
     update_is_dense(out);

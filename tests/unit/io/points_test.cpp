@@ -103,5 +103,29 @@ TEST(Points, AggregateAveragesRealsAndColourAndVotesIntegers) {
     EXPECT_EQ(label, 3u);             // 3 twice, 7 once
 }
 
+TEST(Points, AggregateVotesSignedAndWideIntegersTiesToTheSmallest) {
+    // Per group the most frequent value, ties to the smallest, for I 1, I 4 (negative values
+    // packed beside the group must still order as numbers) and I 8 (the pair path).
+    const double a[] = {-5, -5, 3, 3, -128, 7, 7, 7, 100, -100};
+    Blob b = test::make_blob({{"s8", F::INT8}, {"s32", F::INT32}, {"s64", F::INT64}}, 10, 1,
+                             [&](std::size_t i, std::size_t k, std::uint32_t) { return k == 1 ? a[i] * 1000 : a[i]; });
+    // Group 0: -5, -5, 3, 3 (tie: -5); group 1: -128, 7, 7, 7 (7); group 2: 100, -100 (tie: -100).
+    const std::vector<std::uint32_t> group = {0, 0, 0, 0, 1, 1, 1, 1, 2, 2};
+    const Blob out = aggregate(b, group, 3);
+    const double expected[] = {-5, 7, -100};
+    for (std::uint32_t g = 0; g < 3; ++g) {
+        const std::uint8_t* p = &out.cloud.data[g * out.cloud.point_step];
+        std::int8_t s8;
+        std::int32_t s32;
+        std::int64_t s64;
+        std::memcpy(&s8, p, 1);
+        std::memcpy(&s32, p + 1, 4);
+        std::memcpy(&s64, p + 5, 8);
+        EXPECT_EQ(s8, expected[g]) << "group " << g;
+        EXPECT_EQ(s32, expected[g] * 1000) << "group " << g;
+        EXPECT_EQ(s64, expected[g]) << "group " << g;
+    }
+}
+
 }  // namespace
 }  // namespace pc::io
