@@ -10,6 +10,7 @@
   peers.py check_dbscan FILE OURS EPS MIN     our labels (OURS: pc_dbscan output) vs scikit-learn
   peers.py check_knn FILE OURS K PCT          our outlier marks (pc_knn_outlier --mark outlier) vs
                                               numpy/scipy, and kNN distances vs brute force
+  peers.py xyz_only FILE OUT                  the cloud with its x y z only (F 4, binary PCD)
 """
 import sys
 import time
@@ -35,7 +36,14 @@ def o3d_cloud(path):
 
 def main(argv):
     op, path = argv[1], argv[2]
-    if op == 'o3d_dbscan':
+    if op == 'xyz_only':
+        p = xyz(read_pcd(path)).astype(np.float32)
+        head = ('VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n'
+                f'WIDTH {len(p)}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {len(p)}\nDATA binary\n')
+        with open(argv[3], 'wb') as f:
+            f.write(head.encode() + np.ascontiguousarray(p).tobytes())
+        print(f'0 {len(p)}')
+    elif op == 'o3d_dbscan':
         pc = o3d_cloud(path)
         s, labels = timed(lambda: np.asarray(pc.cluster_dbscan(float(argv[3]), int(argv[4]), False)))
         print(f'{s:.6f} {labels.max() + 1}')
