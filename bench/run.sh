@@ -199,7 +199,7 @@ TOOLS
   # large as the cloud; the tools that build grids sort such points in place.
   $py bench/peers.py xyz_only "$cloud" "$data/xyz.pcd" >/dev/null
   xbytes=$(stat -c %s "$data/xyz.pcd")
-  for spec in "pc_voxel|--leaf 0.01" "pc_knn_outlier|--preset paper-dense" "pc_dbscan|--preset paper-dense" "pc_fruitcount|"; do
+  for spec in "pc_voxel|--leaf 0.01" "pc_knn_outlier|--preset paper-dense" "pc_dbscan|--preset paper-dense" "pc_fruitcount|--no-color"; do
     tool=${spec%%|*}; args=${spec#*|}
     mem_row "$tool" "$args" "$label, x y z only" "$data/xyz.pcd" "$xbytes"
   done
