@@ -118,6 +118,9 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
         // values too) by an LSD radix sort of their positions over the key bits that vary.
         thread_local std::vector<std::uint32_t> dest, pos, pos2;
         const std::size_t m = hi - lo;
+        if (m < 2) {
+            return;  // nothing to move (and keys[lo] may be past the end)
+        }
         dest.resize(m);
         Key kmin = keys[lo], kmax = keys[lo], varying = 0;
         for (std::size_t i = lo; i < hi; ++i) {
@@ -236,7 +239,9 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
         if (parallel) {
 #pragma omp parallel for schedule(dynamic, 1) num_threads(2)
             for (int d = 0; d < 256; ++d) {
-                self(self, begin[d], end[d], shift - 8, false);
+                if (end[d] - begin[d] > 1) {
+                    self(self, begin[d], end[d], shift - 8, false);
+                }
             }
         } else {
             for (unsigned d = 0; d < 256; ++d) {
