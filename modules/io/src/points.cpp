@@ -92,10 +92,7 @@ std::optional<XyzRecords> xyz_records(Blob& blob) {
     r.stride = blob.cloud.point_step;
     r.size = blob.size();
     r.offset = axes[0]->offset;
-    if (r.stride % 4 != 0 || r.offset % 4 != 0 || reinterpret_cast<std::uintptr_t>(r.base) % 4 != 0) {
-        return std::nullopt;
-    }
-    return r;
+    return r.aligned() ? std::optional<XyzRecords>(r) : std::nullopt;
 }
 
 void XyzPoints::release() {
@@ -263,7 +260,7 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
             if (es <= 4) {
                 std::vector<std::uint64_t> votes;
                 votes.reserve(n);
-                const bool is_signed = f.datatype == Field::INT8 || f.datatype == Field::INT16 || f.datatype == Field::INT32;
+                const bool is_signed = type_letter(f.datatype) == 'I';
                 for (std::size_t i = 0; i < n; ++i) {
                     if (group[i] != kNoGroup) {
                         // value_as_double is exact for these types; signed values are offset

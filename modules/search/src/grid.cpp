@@ -96,14 +96,15 @@ using Word = std::uint32_t __attribute__((may_alias));
 template <class Key, std::size_t kWords, bool kTagged>
 void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_t* tags, std::size_t n) {
     const std::size_t words = kWords != 0 ? kWords : step / sizeof(Word);
-    const auto swap = [&](std::size_t i, std::size_t j) {
-        Word* a = reinterpret_cast<Word*>(rec + i * step);
-        Word* b = reinterpret_cast<Word*>(rec + j * step);
+    const auto swap_words = [&](Word* a, Word* b) {
         for (std::size_t w = 0; w < words; ++w) {
             const std::uint32_t t = a[w];
             a[w] = b[w];
             b[w] = t;
         }
+    };
+    const auto swap = [&](std::size_t i, std::size_t j) {
+        swap_words(reinterpret_cast<Word*>(rec + i * step), reinterpret_cast<Word*>(rec + j * step));
         std::swap(keys[i], keys[j]);
         if constexpr (kTagged) {
             std::swap(tags[i], tags[j]);
@@ -170,12 +171,7 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
             std::size_t j = dest[i];
             dest[i] = static_cast<std::uint32_t>(i);
             while (true) {
-                Word* at = reinterpret_cast<Word*>(rec + (lo + j) * step);
-                for (std::size_t w = 0; w < words; ++w) {
-                    const std::uint32_t t = at[w];
-                    at[w] = held[w];
-                    held[w] = t;
-                }
+                swap_words(reinterpret_cast<Word*>(rec + (lo + j) * step), held.data());
                 std::swap(held_key, keys[lo + j]);
                 if constexpr (kTagged) {
                     std::swap(held_tag, tags[lo + j]);
@@ -236,18 +232,12 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
         if (shift <= 0) {
             return;  // the last digit: each bucket holds one key
         }
-        if (parallel) {
-#pragma omp parallel for schedule(dynamic, 1) num_threads(2)
-            for (int d = 0; d < 256; ++d) {
-                if (end[d] - begin[d] > 1) {
-                    self(self, begin[d], end[d], shift - 8, false);
-                }
-            }
-        } else {
-            for (unsigned d = 0; d < 256; ++d) {
-                if (end[d] - begin[d] > 1) {
-                    self(self, begin[d], end[d], shift - 8, false);
-                }
+        // Buckets wider than a leaf recurse (a few hundred calls at most for 4M points): the
+        // one-thread team that `if` makes below the first level costs nothing that shows.
+#pragma omp parallel for schedule(dynamic, 1) num_threads(2) if (parallel)
+        for (int d = 0; d < 256; ++d) {
+            if (end[d] - begin[d] > 1) {
+                self(self, begin[d], end[d], shift - 8, false);
             }
         }
     };
@@ -520,7 +510,7 @@ Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
     //    grid's build needs no block beside its own arrays. 64-bit keys: their own scratch.
     const auto sort_points = [&](auto* keys, auto* k2, std::uint32_t* i2) {
         using Key = std::remove_reference_t<decltype(*keys)>;
-        const auto key_of = [&](const pcl::PointXYZ& p) { return static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2))); };
+        const auto key_of = [&](const pcl::PointXYZ& p) { return static_cast<Key>(cell_key(p)); };
         if (n == cloud.size) {  // all finite (the usual case): in parallel
             const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
@@ -570,8 +560,7 @@ Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
 }
 
 Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell) : sorted_(records), in_place_(true), has_points_(false) {
-    if (records.stride % 4 != 0 || records.offset % 4 != 0 || records.offset + 12 > records.stride ||
-        reinterpret_cast<std::uintptr_t>(records.base) % alignof(float) != 0) {
+    if (!records.aligned()) {
         throw std::logic_error("grid: records sorted in place need 4-aligned x y z floats");
     }
     if (records.size > std::numeric_limits<std::uint32_t>::max()) {
@@ -590,8 +579,7 @@ Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell) : sorted_
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < count; ++i) {
             const pcl::PointXYZ p = view[static_cast<std::size_t>(i)];
-            keys[i] = is_finite(p) ? static_cast<Key>(pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2)))
-                                   : static_cast<Key>(Key{1} << key_bits);
+            keys[i] = is_finite(p) ? static_cast<Key>(cell_key(p)) : static_cast<Key>(Key{1} << key_bits);
             order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
         }
         flag_sort(records.base, records.stride, keys.data(), order_.data(), n);

@@ -72,6 +72,13 @@ struct XyzRecords {
     std::size_t size = 0;
     std::uint32_t offset = 0;  ///< byte offset of x (y at + 4, z at + 8)
 
+    /// Whether x y z can be read as floats in place: stride and offset multiples of 4, x y z
+    /// inside a record, base 4-aligned.
+    [[nodiscard]] bool aligned() const {
+        return stride % 4 == 0 && offset % 4 == 0 && offset + 12 <= stride &&
+               reinterpret_cast<std::uintptr_t>(base) % alignof(float) == 0;
+    }
+
     [[nodiscard]] XyzView view() const {
         XyzView v;
         v.base = base;

@@ -131,6 +131,10 @@ private:
     template <class Key>
     void index_sorted(const Key* sorted, std::size_t n);
     [[nodiscard]] std::int64_t coord(float v, int axis) const;
+    /// The key of the cell holding finite point p.
+    [[nodiscard]] std::uint64_t cell_key(const pcl::PointXYZ& p) const {
+        return pack(coord(p.x, 0), coord(p.y, 1), coord(p.z, 2));
+    }
     /// Cell key: x, y, z packed with the fewest bits each axis needs (sorting by key = by x, y, z).
     [[nodiscard]] std::uint64_t pack(std::int64_t x, std::int64_t y, std::int64_t z) const {
         return (static_cast<std::uint64_t>(x) << (bits_[1] + bits_[2])) |
