@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -35,7 +36,13 @@ double cell_for_knn(const XyzView& points) {
 }
 
 std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k) {
-    std::vector<double> mean(n, std::numeric_limits<double>::infinity());
+    std::vector<double> mean(n);
+    knn_mean_distance(grid, k, mean);
+    return mean;
+}
+
+void knn_mean_distance(const search::Grid& grid, std::uint32_t k, std::span<double> mean) {
+    std::uninitialized_fill(mean.begin(), mean.end(), std::numeric_limits<double>::infinity());
     grid.all_knn(k, [&](std::uint32_t i, const std::vector<std::uint32_t>&, const std::vector<double>& d2) {
         if (d2.empty()) {
             return;
@@ -46,7 +53,6 @@ std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, s
         }
         mean[i] = sum / static_cast<double>(d2.size());
     });
-    return mean;
 }
 
 KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlierParams& params) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <memory>
 
 #include <malloc.h>
 
@@ -112,6 +113,21 @@ Blob empty_like(const Blob& blob) {
 void reserve_points(Blob& blob, std::size_t points) {
     blob.cloud.data.reserve(points * (std::size_t{blob.cloud.point_step} + 4));
 }
+
+SpareWords::SpareWords(Blob& blob) : blob_(blob), bytes_(blob.cloud.data.size()) {
+    auto& data = blob.cloud.data;
+    const std::size_t n = blob.size();
+    const std::size_t at = (bytes_ + 3) & ~std::size_t{3};  // the words' own alignment
+    if (n == 0 || at + 4 * n > data.capacity()) {
+        return;
+    }
+    data.resize(at + 4 * n);  // within the capacity: the points do not move
+    auto* words = reinterpret_cast<std::uint32_t*>(data.data() + at);
+    std::uninitialized_default_construct_n(words, n);  // words now live in those bytes
+    words_ = std::span<std::uint32_t>(words, n);
+}
+
+SpareWords::~SpareWords() { blob_.cloud.data.resize(bytes_); }
 
 void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
     const std::size_t step = blob.cloud.point_step;

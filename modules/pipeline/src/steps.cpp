@@ -65,12 +65,16 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
             return filters::knn_outlier(io::XyzPoints(in).view(), p);
         }
         // The grid sorts the points where they are (no copy of them), and puts them back before
-        // the flags are allocated.
+        // the flags are allocated. Its build sorts the cell keys in the scores' storage, and
+        // its order lives in the blob's spare room: no block of its own per point.
         p.validate();
-        std::vector<double> mean;
+        std::vector<double> mean(in.size());
         {
-            search::Grid grid(search::Grid::kInPlace, *records, filters::cell_for_knn(records->view()));
-            mean = filters::knn_mean_distance(grid, in.size(), p.k);
+            io::SpareWords spare(in);
+            search::Grid grid(search::Grid::kInPlace, *records, filters::cell_for_knn(records->view()),
+                              {.order = spare.words(),
+                               .keys = {reinterpret_cast<std::uint64_t*>(mean.data()), mean.size()}});
+            filters::knn_mean_distance(grid, p.k, mean);
             grid.restore_order(*records);
         }
         return filters::knn_outlier(std::move(mean), p);
@@ -118,7 +122,8 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
         p.validate();
         if (const auto records = records_to_sort(in)) {
             points.release();
-            search::Grid grid(search::Grid::kInPlace, *records, p.eps);
+            io::SpareWords spare(in);  // the grid's order, in room the labels fill later
+            search::Grid grid(search::Grid::kInPlace, *records, p.eps, {.order = spare.words()});
             segmentation::DbscanResult result = segmentation::dbscan(std::move(grid), in.size(), p);
             // dbscan(Grid&&) freed all but the grid's order, which restore_order() needs.
             grid.restore_order(*records);  // NOLINT(bugprone-use-after-move)

@@ -81,11 +81,11 @@ struct Near {
 };
 
 /// Joins the core points of one cell [b, e) that are within eps (sequential union-find on the
-/// cell's points, then written to the forest), numbers the local components 0..n-1 in `comp`
-/// and sets `count` to n (kMany when n > 64).
+/// cell's points, then written to the forest), numbers the local components 0..n-1 in `core`
+/// (a core point's entry becomes 1 + its component; see run()) and sets `count` to n (kMany
+/// when n > 64).
 void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e, double eps2,
-                      const std::vector<std::uint8_t>& core, ConcurrentForest& forest,
-                      std::vector<std::uint8_t>& comp, std::uint8_t& count) {
+                      std::vector<std::uint8_t>& core, ConcurrentForest& forest, std::uint8_t& count) {
     thread_local std::vector<std::uint32_t> up;
     up.resize(e - b);
     const auto root = [&](std::uint32_t x) {
@@ -124,10 +124,10 @@ void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e
         }
         const std::uint32_t r = root(s - b);  // the smallest member: seen before the others
         if (r == s - b) {
-            comp[s] = static_cast<std::uint8_t>(std::min<std::uint32_t>(n, kMany));
+            core[s] = static_cast<std::uint8_t>(1 + std::min<std::uint32_t>(n, kMany - 1));
             ++n;
         } else {
-            comp[s] = comp[r + b];
+            core[s] = core[r + b];
             forest.parent[s].store(r + b, std::memory_order_relaxed);
         }
     }
@@ -167,15 +167,18 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     if (m >= kTag) {
         throw InvalidArgument("dbscan: at most 2^31 - 1 finite points, got " + std::to_string(m));
     }
-    std::vector<std::uint8_t> core(m, 0);
 
     // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
     //    once there are enough; the own cell first, where most neighbours are). Then the core
     //    points of each cell are joined among themselves (a cell-local union-find, written to the
     //    forest: nobody else reads these entries in this pass) and numbered by local component.
+    // The forest first: it takes the block the grid's build sorted its keys in (the same size,
+    // free again), which a smaller block allocated before it would split (3 MB more peak at 1M).
     ConcurrentForest forest(m);
+    // Per sorted position: 0 for a point that is not core, 1 + its local component (the
+    // component among the core points of its cell, below) for a core point. One byte for both.
+    std::vector<std::uint8_t> core(m, 0);
     const std::size_t stride = grid.point_stride();
-    std::vector<std::uint8_t> comp(m, 0);               // local component of a core point
     std::vector<std::uint8_t> comps(grid.cell_count());  // per cell; kMany = too many to track
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         const std::uint32_t b = grid.cell_begin(c), e = grid.cell_end(c);
@@ -191,7 +194,7 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
             }
             core[s] = found >= params.min_points;
         }
-        local_components(grid, b, e, eps2, core, forest, comp, comps[c]);
+        local_components(grid, b, e, eps2, core, forest, comps[c]);
     });
 
     // 2. Components across cells: for each pair of neighbouring cells (each pair once), core
@@ -234,7 +237,7 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                         continue;
                     }
                     const std::uint64_t bit =
-                        track ? std::uint64_t{1} << (comp[s] * comps[nc] + comp[t]) : 0;
+                        track ? std::uint64_t{1} << ((core[s] - 1) * comps[nc] + (core[t] - 1)) : 0;
                     if ((joined & bit) != 0 || !near(grid.point(t))) {
                         continue;
                     }
@@ -280,9 +283,8 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                core.begin() + grid.cell_end(c);
     });
 
-    // The local components (and a handed-over grid's coordinates and cells) are done with:
-    // freed before the result is allocated.
-    std::vector<std::uint8_t>().swap(comp);
+    // A handed-over grid's coordinates and cells are done with: freed before the result is
+    // allocated.
     if (owned != nullptr) {
         owned->release_all_but_order();
     }
@@ -332,7 +334,7 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     r.core.assign(n, 0);
     for (std::uint32_t s = 0; s < m; ++s) {
         const std::uint32_t i = grid.index_of(s);
-        r.core[i] = core[s];
+        r.core[i] = core[s] != 0;
         if (const std::uint32_t k = cluster_of(s); k != kNone) {
             r.labels[i] = label_of[k];
         }

@@ -5,6 +5,7 @@
 
 #include <pc/core/error.h>
 #include <pc/filters/knn_outlier.h>
+#include <pc/search/grid.h>
 
 #include "support/clouds.h"
 
@@ -47,6 +48,31 @@ TEST(KnnOutlier, ScoresMatchBruteForce) {
             EXPECT_EQ(r.outlier[i], 1);
         }
     }
+}
+
+TEST(KnnOutlier, ScoresOverAnInPlaceGridBuiltInTheirStorageMatchBruteForce) {
+    // The pipeline's way: the grid sorts the points in place, its keys in the scores' storage
+    // (Grid::Lent), then the scores are written there; the points are put back.
+    Cloud c = test::concat(test::uniform(800, 1.0f, 12), test::grid({2, 2, 2}, 4, 0.05f));
+    c.push_back(test::nan_point());
+    Cloud sorted = c;
+    const XyzRecords records{reinterpret_cast<std::uint8_t*>(sorted.data()), sizeof(pcl::PointXYZ), sorted.size(), 0};
+    std::vector<double> mean(c.size());
+    {
+        search::Grid grid(search::Grid::kInPlace, records, cell_for_knn(XyzView(c)),
+                          {.keys = {reinterpret_cast<std::uint64_t*>(mean.data()), mean.size()}});
+        knn_mean_distance(grid, 5, mean);
+        grid.restore_order(records);
+    }
+    const auto ref = brute_scores(c, 5);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        if (std::isfinite(ref[i])) {
+            EXPECT_NEAR(mean[i], ref[i], 1e-12) << i;
+        } else {
+            EXPECT_FALSE(std::isfinite(mean[i])) << i;
+        }
+    }
+    EXPECT_EQ(knn_outlier(std::move(mean), {.k = 5}).outlier, knn_outlier(c, {.k = 5}).outlier);
 }
 
 TEST(KnnOutlier, DropsTheTopTenPercentAtOrAboveTheCut) {

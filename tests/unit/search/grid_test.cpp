@@ -284,13 +284,19 @@ std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride, std::ui
 /// Checks an in-place grid over `c` (as records of `stride` bytes, x at `offset`) against the
 /// copying grid: the records are whole and in cell order, the answers are the same, and
 /// restore_order() gives back the original bytes.
-void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset) {
+void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset,
+                                      Grid::Lent lent = {}) {
     SCOPED_TRACE("stride " + std::to_string(stride) + ", cell " + std::to_string(cell));
     std::vector<std::uint8_t> bytes = records_of(c, stride, offset);
     const std::vector<std::uint8_t> original = bytes;
     const XyzRecords records{bytes.data(), stride, c.size(), offset};
     const Grid copy(c, cell);
-    Grid grid(Grid::kInPlace, records, cell);
+    Grid grid(Grid::kInPlace, records, cell, lent);
+    if (lent.order.size() >= c.size()) {  // the order lives in the lent words
+        for (std::uint32_t s = 0; s < grid.finite_count(); ++s) {
+            ASSERT_EQ(grid.index_of(s), lent.order[s]) << "position " << s;
+        }
+    }
     ASSERT_EQ(grid.finite_count(), copy.finite_count());
     ASSERT_EQ(grid.cell_count(), copy.cell_count());
     EXPECT_EQ(grid.point_stride(), stride / 4);
@@ -359,6 +365,23 @@ TEST(Grid, InPlaceSortsLargeCloudsAndWideKeys) {
     const Cloud c = test::uniform(70000, 1.0f, 13);
     expect_in_place_grid_equals_copy(c, 0.01, 16, 0);
     expect_in_place_grid_equals_copy(test::uniform(3000, 1.0f, 14), 2e-4, 12, 0);
+}
+
+TEST(Grid, InPlaceBuildsInLentMemoryOrItsOwn) {
+    // Lent order and key scratch large enough are used (32- and 39-bit keys); lent memory too
+    // small is left alone and the grid allocates its own. The answers are the same either way.
+    Cloud c = mixed_density_cloud();
+    c.push_back(test::nan_point());
+    for (double cell : {0.02, 2e-6}) {
+        std::vector<std::uint32_t> order(c.size() + 3, 0xDEADBEEF);
+        std::vector<std::uint64_t> keys(c.size());
+        expect_in_place_grid_equals_copy(c, cell, 12, 0, {.order = order, .keys = keys});
+        std::vector<std::uint32_t> small_order(c.size() - 1, 0xDEADBEEF);
+        std::vector<std::uint64_t> small_keys(c.size() - 1, 7);
+        expect_in_place_grid_equals_copy(c, cell, 16, 0, {.order = small_order, .keys = small_keys});
+        EXPECT_TRUE(std::all_of(small_order.begin(), small_order.end(), [](std::uint32_t v) { return v == 0xDEADBEEF; }));
+        EXPECT_TRUE(std::all_of(small_keys.begin(), small_keys.end(), [](std::uint64_t v) { return v == 7; }));
+    }
 }
 
 TEST(Grid, InPlaceChecksItsRecords) {

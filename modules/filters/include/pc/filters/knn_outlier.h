@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <pc/core/cloud.h>
@@ -44,6 +45,9 @@ struct KnnOutlierResult {
 /// Each of the n points' mean distance to its k nearest other points (+inf when non-finite or
 /// alone), over a grid built on them (cells of any size; cell_for_knn() is the fastest).
 [[nodiscard]] std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k);
+/// The same into `mean` (one entry a point, every entry written): storage the caller may have
+/// used before, e.g. lent to the grid's build (search::Grid::Lent::keys).
+void knn_mean_distance(const search::Grid& grid, std::uint32_t k, std::span<double> mean);
 /// The threshold and flags from those scores (the result keeps them as mean_distance).
 [[nodiscard]] KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlierParams& params);
 

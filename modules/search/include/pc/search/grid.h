@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <mutex>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -41,7 +42,17 @@ public:
     /// of the points (12 bytes each), which on an x y z-only cloud is the size of the cloud.
     /// The records stay in grid order until restore_order() puts them back; meanwhile they must
     /// not move or be written, and knn(i) is not available (as after release_cloud()).
-    Grid(InPlace, const XyzRecords& records, double cell);
+    Grid(InPlace, const XyzRecords& records, double cell) : Grid(kInPlace, records, cell, Lent{}) {}
+    /// Memory a caller lends an in-place grid so that its build allocates less (each part is
+    /// used when it is large enough, else the grid allocates its own): `order`, one word a
+    /// record, holds index_of() until restore_order() (it must outlive that); `keys`, 8 bytes a
+    /// record, holds the cell keys while the constructor sorts (free again once it returns).
+    /// Memory that the caller fills afterwards anyway (e.g. a result array) then serves twice.
+    struct Lent {
+        std::span<std::uint32_t> order;
+        std::span<std::uint64_t> keys;
+    };
+    Grid(InPlace, const XyzRecords& records, double cell, Lent lent);
     /// Puts the records an in-place grid sorted back in their original order and frees the grid
     /// (no call but finite_count() is valid afterwards). Also after release_all_but_order().
     /// `records` must be the ones the grid was built from (std::logic_error otherwise).
@@ -76,9 +87,9 @@ public:
 
     // Cell-level access for algorithms that sweep the grid: points are "sorted positions"
     // 0..finite_count()-1, grouped by cell.
-    [[nodiscard]] std::size_t cell_count() const { return cells_.size(); }
+    [[nodiscard]] std::size_t cell_count() const { return cells_.empty() ? 0 : cells_.size() - 1; }
     [[nodiscard]] std::uint32_t cell_begin(std::size_t c) const { return cells_[c].begin; }
-    [[nodiscard]] std::uint32_t cell_end(std::size_t c) const { return cells_[c].end; }
+    [[nodiscard]] std::uint32_t cell_end(std::size_t c) const { return cells_[c + 1].begin; }
     /// Which neighbour cells a sweep hands over: all of the 3x3x3 block, or only the cells after
     /// c in cell order (each pair of neighbouring cells is then seen once, from its first cell).
     enum class Neighbours { kAll, kAfter };
@@ -121,9 +132,12 @@ public:
     [[nodiscard]] std::size_t finite_count() const { return finite_; }
 
 private:
+    /// 12 bytes: the key in two words (4-byte alignment) and the first sorted position; a
+    /// cell ends where the next begins (cells_ closes with a sentinel holding finite_count()).
     struct Cell {
-        std::uint64_t key;
-        std::uint32_t begin, end;
+        std::uint32_t key_lo, key_hi, begin;
+        [[nodiscard]] std::uint64_t key() const { return (std::uint64_t{key_hi} << 32) | key_lo; }
+        [[nodiscard]] std::uint32_t end() const { return (this + 1)->begin; }
     };
     /// Checks the cell, sets the origin, dimensions and key bits; returns the finite points.
     std::size_t set_frame(const XyzView& points, double cell);
@@ -180,12 +194,13 @@ private:
     std::vector<float> xyz_;              // sorted by cell, 3 floats per point (unless in place)
     const float* xyz_at_ = nullptr;       // x of sorted position 0: xyz_, or the sorted records
     std::size_t stride_ = 3;              // floats from one sorted position to the next
-    std::vector<std::uint32_t> order_;    // original index of each sorted point (in place: all
-                                          // points, the non-finite ones after finite_count())
+    std::span<std::uint32_t> order_;      // original index of each sorted point (in place: all
+                                          // points, the non-finite ones after finite_count()):
+    std::vector<std::uint32_t> own_order_;  // in own_order_, or in memory lent by the caller
     std::size_t finite_ = 0;
     XyzRecords sorted_;                   // the records sorted in place, if in_place_
     bool in_place_ = false;
-    std::vector<Cell> cells_;
+    std::vector<Cell> cells_;  // the occupied cells in key order, then the sentinel
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
     XyzView points_;  // the indexed points, for knn(i)
@@ -201,7 +216,7 @@ void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
         for (std::int64_t dy = -1; dy <= 1; ++dy) {
             const auto [first, last] = row_span(cx + dx, cy + dy, cz - 1, cz + 1);
             for (const Cell* cell = first; cell < last; ++cell) {
-                for (std::uint32_t s = cell->begin; s < cell->end; ++s) {
+                for (std::uint32_t s = cell->begin; s < cell->end(); ++s) {
                     const float* p = point(s);
                     const double ex = double{p[0]} - q.x;
                     const double ey = double{p[1]} - q.y;
