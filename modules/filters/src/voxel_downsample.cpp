@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <tuple>
+#include <type_traits>
+#include <vector>
 
 #include <pc/core/error.h>
 #include <pc/io/points.h>
@@ -19,30 +21,32 @@ void VoxelParams::validate() const {
 
 namespace {
 
-/// Voxel ids in order of each voxel's first point, from m (voxel key, point index) entries sorted
-/// by key then index: key_at(s) and index_at(s) read entry s.
-template <class KeyAt, class IndexAt>
-std::uint32_t number_voxels(std::size_t m, KeyAt key_at, IndexAt index_at, std::vector<std::uint32_t>& voxel) {
-    std::size_t runs = 0;
+/// Voxel ids in order of each voxel's first point, from the (voxel key, point index) entries of
+/// `keyed` sorted by key then index: key_at(s) and index_at(s) read entry s. Each point first
+/// gets its run's number (runs in key order); `keyed` is then freed, and one pass over the
+/// points in index order renumbers the runs as first met (4 bytes a run; a table of (first
+/// point, run) pairs sorted by point, 8 bytes a run, was the step's peak beside the entries).
+template <class Entries, class KeyAt, class IndexAt>
+std::uint32_t number_voxels(Entries&& keyed, KeyAt key_at, IndexAt index_at, std::vector<std::uint32_t>& voxel) {
+    const std::size_t m = keyed.size();
+    std::uint32_t runs = 0;
     for (std::size_t s = 0; s < m; ++s) {
-        runs += s == 0 || key_at(s) != key_at(s - 1);
+        runs += s > 0 && key_at(s) != key_at(s - 1);
+        voxel[index_at(s)] = runs;
     }
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> firsts;  // (first point, run start)
-    firsts.reserve(runs);
-    for (std::size_t s = 0; s < m; ++s) {
-        if (s == 0 || key_at(s) != key_at(s - 1)) {
-            firsts.push_back({index_at(s), static_cast<std::uint32_t>(s)});
+    runs += m > 0;
+    std::remove_reference_t<Entries>().swap(keyed);
+    std::vector<std::uint32_t> id(runs, io::kNoGroup);
+    std::uint32_t next = 0;
+    for (auto& v : voxel) {
+        if (v != io::kNoGroup) {
+            if (id[v] == io::kNoGroup) {
+                id[v] = next++;
+            }
+            v = id[v];
         }
     }
-    std::sort(firsts.begin(), firsts.end());
-    for (std::uint32_t v = 0; v < firsts.size(); ++v) {
-        std::size_t s = firsts[v].second;
-        const auto key = key_at(s);
-        for (; s < m && key_at(s) == key; ++s) {
-            voxel[index_at(s)] = v;
-        }
-    }
-    return static_cast<std::uint32_t>(firsts.size());
+    return next;
 }
 
 }  // namespace
@@ -96,7 +100,7 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
         std::sort(keyed.begin(), keyed.end());  // by voxel, then by point index
         const std::uint64_t index_mask = (std::uint64_t{1} << index_bits) - 1;
         r.count = number_voxels(
-            keyed.size(), [&](std::size_t s) { return keyed[s] >> index_bits; },
+            keyed, [&](std::size_t s) { return keyed[s] >> index_bits; },
             [&](std::size_t s) { return static_cast<std::uint32_t>(keyed[s] & index_mask); }, r.voxel);
         return r;
     }
@@ -112,7 +116,7 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
         }
         std::sort(keyed.begin(), keyed.end());  // by voxel, then by point index
         return number_voxels(
-            keyed.size(), [&](std::size_t s) { return keyed[s].first; }, [&](std::size_t s) { return keyed[s].second; },
+            keyed, [&](std::size_t s) { return keyed[s].first; }, [&](std::size_t s) { return keyed[s].second; },
             r.voxel);
     };
     if (key_bits <= 64) {
