@@ -129,6 +129,19 @@ SpareWords::SpareWords(Blob& blob) : blob_(blob), bytes_(blob.cloud.data.size())
 
 SpareWords::~SpareWords() { blob_.cloud.data.resize(bytes_); }
 
+namespace {
+
+/// The first `kept` points become the cloud (unorganised: height 1).
+void set_point_count(Blob& blob, std::size_t kept) {
+    const std::size_t step = blob.cloud.point_step;
+    blob.cloud.data.resize(kept * step);
+    blob.cloud.width = static_cast<std::uint32_t>(kept);
+    blob.cloud.height = 1;
+    blob.cloud.row_step = static_cast<std::uint32_t>(kept * step);
+}
+
+}  // namespace
+
 void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
     const std::size_t step = blob.cloud.point_step;
     const std::size_t n = blob.size();
@@ -143,10 +156,27 @@ void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
             std::memmove(data + j * step, data + std::size_t{i} * step, step);
         }
     }
-    blob.cloud.data.resize(indices.size() * step);
-    blob.cloud.width = static_cast<std::uint32_t>(indices.size());
-    blob.cloud.height = 1;
-    blob.cloud.row_step = static_cast<std::uint32_t>(indices.size() * step);
+    set_point_count(blob, indices.size());
+}
+
+void keep_flagged(Blob& blob, std::span<const std::uint8_t> flags, bool keep_set) {
+    const std::size_t step = blob.cloud.point_step;
+    const std::size_t n = blob.size();
+    if (flags.size() != n) {
+        throw Error("keep_flagged: flags must be one per point (" + std::to_string(n) + "), got " +
+                    std::to_string(flags.size()));
+    }
+    std::uint8_t* data = blob.cloud.data.data();
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        if ((flags[i] != 0) == keep_set) {
+            if (i != j) {  // i > j: the row moves towards the front over rows already kept
+                std::memmove(data + j * step, data + i * step, step);
+            }
+            ++j;
+        }
+    }
+    set_point_count(blob, j);
 }
 
 void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_t> values) {

@@ -91,14 +91,7 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
         io::set_field(in, o.mark_field, mark);
         return {std::move(in), note};
     }
-    Indices kept;
-    kept.reserve(o.invert ? outliers : r.outlier.size() - outliers);
-    for (std::uint32_t i = 0; i < r.outlier.size(); ++i) {
-        if ((r.outlier[i] != 0) == o.invert) {
-            kept.push_back(i);
-        }
-    }
-    io::keep_points(in, kept);
+    io::keep_flagged(in, r.outlier, o.invert);  // the outliers when inverted, else the inliers
     return {std::move(in), note};
 }
 

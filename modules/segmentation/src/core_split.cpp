@@ -538,6 +538,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
                 break;
             }
         }
+        near.reset();  // searched for the last time: freed before the hollow clusters' lists
         part = std::move(assigned);  // the flood's parts; unassigned points: part 0
         for (auto& v : part) {
             v = v == kNone ? 0 : v;

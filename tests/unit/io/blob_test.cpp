@@ -38,6 +38,32 @@ TEST(Blob, KeepPointsCompactsInPlaceKeepingEveryField) {
     EXPECT_EQ(b.size(), 0u);
 }
 
+TEST(Blob, KeepFlaggedKeepsTheSameRowsAsTheIndicesOfItsFlags) {
+    // Oracle: keep_points() with the indices whose flag matches; any non-zero flag counts as set.
+    const std::vector<std::uint8_t> flags = {0, 2, 0, 1, 1, 0, 0};
+    for (const bool keep_set : {true, false}) {
+        Blob b = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, flags.size(), 1,
+                                 [](std::size_t i, std::size_t k, std::uint32_t) { return k == 0 ? i * 0.5 : i + 100.0; });
+        Blob expected = b;
+        std::vector<std::uint32_t> idx;
+        for (std::uint32_t i = 0; i < flags.size(); ++i) {
+            if ((flags[i] != 0) == keep_set) {
+                idx.push_back(i);
+            }
+        }
+        keep_points(expected, idx);
+        const std::uint8_t* storage = b.cloud.data.data();
+        keep_flagged(b, flags, keep_set);
+        EXPECT_EQ(b.cloud.data.data(), storage);
+        EXPECT_EQ(b.cloud.data, expected.cloud.data);
+        EXPECT_EQ(b.cloud.width, expected.cloud.width);
+        EXPECT_EQ(b.cloud.height, 1u);
+        EXPECT_EQ(b.cloud.row_step, expected.cloud.row_step);
+    }
+    Blob b = test::random_xyz(3);
+    EXPECT_THROW(keep_flagged(b, std::vector<std::uint8_t>(2, 0), true), Error);
+}
+
 TEST(Blob, KeepPointsRejectsOutOfRangeRepeatedAndUnorderedIndices) {
     for (const std::vector<std::uint32_t>& idx : {std::vector<std::uint32_t>{3}, {1, 1}, {2, 0}}) {
         Blob b = test::random_xyz(3);

@@ -67,6 +67,11 @@ private:
 /// compacted, not copied. The result is unorganised (height 1). Throws pc::Error on a bad index.
 void keep_points(Blob& blob, std::span<const std::uint32_t> indices);
 
+/// Keeps the points whose flag is set (`keep_set`) or clear (not `keep_set`), one flag per point,
+/// in place as keep_points(), with no list of indices (4 bytes a kept point). Throws pc::Error
+/// when the flags are not one per point.
+void keep_flagged(Blob& blob, std::span<const std::uint8_t> flags, bool keep_set);
+
 /// Sets a `U 4` field `name` from `values` (one per point), in place. An existing U 4 field of
 /// that name is overwritten where it sits, so repeated runs of a tool do not stack copies;
 /// otherwise the field is appended to each point (dropping an old field of that name from the
