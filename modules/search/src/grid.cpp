@@ -8,6 +8,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <tuple>
@@ -965,6 +966,14 @@ void Grid::release_all_but_order() {
     std::vector<std::uint32_t>().swap(row_table_);
     std::vector<Node>().swap(nodes_);
     std::vector<std::uint32_t>().swap(tree_perm_);
+}
+
+void Grid::renumber_by_position() {
+    if (in_place_ || finite_ != points_.size) {
+        throw std::logic_error("Grid::renumber_by_position: needs a copied grid over finite points only");
+    }
+    std::iota(order_.begin(), order_.end(), 0u);
+    has_points_ = false;
 }
 
 void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {

@@ -1,14 +1,17 @@
 #include <pc/segmentation/core_split.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <numeric>
+#include <initializer_list>
 #include <optional>
 #include <queue>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -35,6 +38,47 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
         x = parent[x];
     }
     return x;
+}
+
+/// Puts core_split's per-point arrays (`words`, and `depth`; those not of the points' number are
+/// left alone) back in point order after it worked in cell order. The compacted points' cloud
+/// indices (`index`, below n) rise in point order, so a point's place is the number of indices
+/// below its own: a bit per cloud point and a running count per 64 of them give it without a
+/// sort. The arrays keep their storage (views of them stay valid); `index` is put back last.
+void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n,
+                         std::initializer_list<std::vector<std::uint32_t>*> words, std::vector<float>& depth) {
+    const std::size_t m = index.size();
+    std::vector<std::uint32_t> place(m);
+    {
+        std::vector<std::uint64_t> bits(n / 64 + 1, 0);
+        for (const std::uint32_t i : index) {
+            bits[i / 64] |= std::uint64_t{1} << (i % 64);
+        }
+        std::vector<std::uint32_t> below(bits.size(), 0);
+        for (std::size_t w = 1; w < bits.size(); ++w) {
+            below[w] = below[w - 1] + static_cast<std::uint32_t>(std::popcount(bits[w - 1]));
+        }
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::uint32_t i = index[k];
+            const std::uint64_t lower = bits[i / 64] & ((std::uint64_t{1} << (i % 64)) - 1);
+            place[k] = below[i / 64] + static_cast<std::uint32_t>(std::popcount(lower));
+        }
+    }
+    const auto put_back = [&](auto& v) {
+        if (v.size() != m) {
+            return;
+        }
+        std::remove_reference_t<decltype(v)> moved(m);
+        for (std::size_t k = 0; k < m; ++k) {
+            moved[place[k]] = v[k];
+        }
+        std::copy(moved.begin(), moved.end(), v.begin());
+    };
+    for (auto* v : words) {
+        put_back(*v);
+    }
+    put_back(depth);
+    put_back(index);
 }
 
 /// The fruit radius from the curvature of hollow surfaces: least-squares spheres through patches
@@ -309,26 +353,45 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         }
         base.index = nullptr;
     }
-    const XyzView pts = base.subset(cloud.index != nullptr ? through : index);
-    const std::size_t m = pts.size;
+    std::vector<std::uint32_t>& positions = cloud.index != nullptr ? through : index;  // in `base`
+    const std::size_t m = positions.size();
     if (m > kValue) {
         throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(m));
     }
     CoreSplitResult r;  // r.depth is allocated at the end, once the working arrays are freed
+    r.spacing = search::median_spacing(base.subset(positions));  // sampled in point order
+    const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
+    const double cell = std::max(rb, link);
+    // The compacted points are renumbered in the search grid's cell order, so that the points a
+    // search finds, and their entries in every per-point array, lie near each other in memory
+    // (in point order, the core joining, the depths and the flood waited on memory: 1M -> 4M
+    // points took 5x longer). Where order decides a result (the flood's seeds, the sampled
+    // patches and the member lists), point order is used; the arrays return to it after step 5.
+    std::optional<search::Grid> near;
+    if (r.spacing > 0) {
+        near.emplace(base.subset(positions), cell);
+        std::vector<std::uint32_t> moved(m);
+        for (auto* v : {&index, &through, &lab}) {
+            if (v->size() == m) {
+                for (std::uint32_t q = 0; q < m; ++q) {
+                    moved[q] = (*v)[near->index_of(q)];
+                }
+                v->swap(moved);
+            }
+        }
+        near->renumber_by_position();
+    }
+    const XyzView pts = base.subset(positions);
     std::vector<std::uint32_t> part;  // part within the cluster, 0-based (the flood's result)
     std::vector<std::uint32_t> parts(clusters, 1);
     std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
     std::vector<float> depth(m, 0.0f);  // per compacted point: distance to the nearest boundary point
-    r.spacing = search::median_spacing(pts);
     if (r.spacing > 0) {
-        const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
-        const double cell = std::max(rb, link);
         // 1. Boundary: neighbours of the same cluster lie mostly to one side. Swept cell by cell:
         //    the neighbour cells are found once per cell, not once per point. The grid is built
         //    again for step 4: freed meanwhile, it does not add to the boundary grid's peak.
         std::vector<std::uint8_t> boundary(m, 0);
         const double rb2 = rb * rb;
-        std::optional<search::Grid> near(std::in_place, pts, cell);
         const search::Grid& grid = *near;
         grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
             for (std::uint32_t sp = grid.cell_begin(c); sp < grid.cell_end(c); ++sp) {
@@ -459,16 +522,31 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         }
         const double ideal = 4.0 / 3.0 * 3.141592653589793 * std::pow(core_depth / s, 3);
         const auto min_core = static_cast<std::uint32_t>(std::max(1.0, std::floor(params.min_core_fraction * ideal)));
-        std::vector<std::uint32_t> cores(clusters, 0);
-        for (std::size_t k = 0; k < m; ++k) {  // in point order: deterministic numbering
-            if (!is_core(k)) {
-                continue;
-            }
-            std::uint32_t& info = parent[root_of(k)];
-            if ((info & kNumbered) == 0 && (info & kValue) >= min_core) {
-                info = kRoot | kNumbered | cores[lab[k]]++;
+        // Within its cluster, a core's part number is its rank by its first point in point order
+        // (the points are in cell order here): the kept cores are listed, their entries holding
+        // their place in the list meanwhile.
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> kept;  // first cloud index, root
+        for (std::size_t k = 0; k < m; ++k) {
+            if ((parent[k] & kRoot) != 0 && (parent[k] & kValue) >= min_core) {
+                parent[k] = kRoot | kNumbered | static_cast<std::uint32_t>(kept.size());
+                kept.emplace_back(kNone, static_cast<std::uint32_t>(k));
             }
         }
+        for (std::size_t k = 0; k < m; ++k) {
+            const std::uint32_t info = is_core(k) ? parent[root_of(k)] : 0;
+            if ((info & kNumbered) != 0) {
+                auto& first = kept[info & kValue].first;
+                first = std::min(first, index[k]);
+            }
+        }
+        std::sort(kept.begin(), kept.end(), [&](const auto& a, const auto& b) {
+            return std::pair(lab[a.second], a.first) < std::pair(lab[b.second], b.first);
+        });
+        std::vector<std::uint32_t> cores(clusters, 0);
+        for (const auto& [first, root] : kept) {
+            parent[root] = kRoot | kNumbered | cores[lab[root]]++;
+        }
+        std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(kept);
         // 5. Marker watershed from the cores of clusters with two or more, deepest points first.
         //    Clusters never exchange points, so each floods on its own, in parallel (the order
         //    within a cluster, hence the result, is the same as one flood over all of them).
@@ -497,6 +575,10 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
             using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
             std::priority_queue<Item> heap;
             std::uint64_t seq = 0;
+            // Seeded in point order (cloud indices rise with it): equal depths pop first-seeded first.
+            const auto first = seeds.begin() + seed_start[static_cast<std::size_t>(c)];
+            const auto last = seeds.begin() + seed_start[static_cast<std::size_t>(c) + 1];
+            std::sort(first, last, [&](std::uint32_t a, std::uint32_t b) { return index[a] < index[b]; });
             for (std::uint32_t q = seed_start[static_cast<std::size_t>(c)]; q < seed_start[static_cast<std::size_t>(c) + 1]; ++q) {
                 const std::uint32_t k = seeds[q];
                 heap.emplace(depth[k], ~seq++, k);
@@ -546,6 +628,9 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         for (const auto& [k, to] : unreached) {
             part[k] = to;
         }
+        std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
+        std::vector<std::uint32_t>().swap(seeds);
+        back_to_point_order(index, n, {&through, &lab, &part}, depth);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
             r.splits += cores[c] >= 2;

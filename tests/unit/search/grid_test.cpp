@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <random>
@@ -394,6 +395,46 @@ TEST(Grid, InPlaceChecksItsRecords) {
     EXPECT_THROW(grid.restore_order(XyzRecords{other.data(), 16, 50, 0}), std::logic_error);
     const Grid copy(c, 0.1);
     EXPECT_THROW(const_cast<Grid&>(copy).restore_order(XyzRecords{bytes.data(), 16, 50, 0}), std::logic_error);
+}
+
+TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
+    // The caller moves point index_of(s) to place s; the renumbered grid then answers for that
+    // reordered cloud exactly what a grid built over it answers, and radius queries name the
+    // same points as before, by their new numbers.
+    const Cloud c = test::uniform(3000, 1.0f, 21);
+    const double cell = 0.08;
+    Grid grid(c, cell);
+    Cloud sorted;
+    std::vector<std::uint32_t> old(c.size());
+    for (std::uint32_t s = 0; s < c.size(); ++s) {
+        old[s] = grid.index_of(s);
+        sorted.push_back(c[old[s]]);
+    }
+    const Grid before(c, cell);
+    grid.renumber_by_position();
+    const Grid rebuilt(sorted, cell);
+    std::vector<std::uint32_t> idx, ref_idx;
+    std::vector<double> d2, ref_d2;
+    for (std::uint32_t s = 0; s < sorted.size(); s += 7) {
+        EXPECT_EQ(grid.index_of(s), s);
+        EXPECT_EQ(rebuilt.index_of(s), s);  // the sort is stable: cell order is kept
+        std::vector<std::pair<std::uint32_t, double>> got, want;
+        grid.for_each_within(sorted[s], cell, [&](std::uint32_t j, double d) { got.emplace_back(old[j], d); });
+        before.for_each_within(sorted[s], cell, [&](std::uint32_t j, double d) { want.emplace_back(j, d); });
+        EXPECT_EQ(got, want) << "position " << s;
+        grid.knn_point(sorted[s], 4, idx, d2);
+        rebuilt.knn_point(sorted[s], 4, ref_idx, ref_d2);
+        EXPECT_EQ(idx, ref_idx);
+        EXPECT_EQ(d2, ref_d2);
+    }
+    EXPECT_THROW(grid.knn(0, 3, idx, d2), std::logic_error);  // the old view is forgotten
+    Cloud with_nan = c;
+    with_nan[5].x = std::numeric_limits<float>::quiet_NaN();
+    Grid partial(with_nan, cell);
+    EXPECT_THROW(partial.renumber_by_position(), std::logic_error);
+    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    Grid in_place(Grid::kInPlace, XyzRecords{bytes.data(), 16, c.size(), 0}, cell);
+    EXPECT_THROW(in_place.renumber_by_position(), std::logic_error);
 }
 
 /// Mean over the points of how many points share their cell.

@@ -127,6 +127,32 @@ TEST(CoreSplit, HandingOverTheLabelsGivesTheSameResult) {
     EXPECT_EQ(through.labels, viewed.labels);
 }
 
+TEST(CoreSplit, ASubsetViewGivesWhatACopyOfItsPointsGives) {
+    // core_split works on the clustered points in cell order and returns its arrays to point
+    // order: through a view of a subset (its indices composed, then reordered beside the
+    // compaction's) the result must be the copy's, point for point.
+    const Scene s = bunch();
+    std::vector<std::uint32_t> pick;
+    for (std::uint32_t i = 0; i < s.cloud.size(); ++i) {
+        if (i % 5 != 3) {
+            pick.push_back(i);
+        }
+    }
+    Cloud copy;
+    std::vector<std::uint32_t> label;
+    for (const auto i : pick) {
+        copy.push_back(s.cloud[i]);
+        label.push_back(s.label[i]);
+    }
+    const CoreSplitResult copied = core_split(copy, label, {});
+    const CoreSplitResult viewed = core_split(XyzView(s.cloud).subset(pick), label, {});
+    EXPECT_EQ(viewed.labels, copied.labels);
+    EXPECT_EQ(viewed.depth, copied.depth);
+    EXPECT_EQ(viewed.spacing, copied.spacing);
+    EXPECT_EQ(copied.cluster_count, 7u);
+    EXPECT_GE(copied.splits, 1u);
+}
+
 TEST(CoreSplit, SamePartitionWhenScaledOrRotated) {
     const Scene s = bunch();
     const CoreSplitResult base = core_split(s.cloud, s.label, {});

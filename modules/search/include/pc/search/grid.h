@@ -129,6 +129,12 @@ public:
     /// finite_count() (the only calls left valid): for a caller done searching that still maps
     /// sorted positions back to indices while it allocates its result.
     void release_all_but_order();
+    /// Renumbers the points by sorted position (index_of(s) == s afterwards), for a caller that
+    /// keeps its per-point data in cell order, where neighbours lie near each other in memory:
+    /// it moves its point index_of(s) to place s (reading index_of() before this call) and views
+    /// the points in that order. The grid forgets its cloud (as release_cloud()). Every point
+    /// must be finite, and the grid not built in place (std::logic_error).
+    void renumber_by_position();
     [[nodiscard]] std::size_t finite_count() const { return finite_; }
 
 private:
