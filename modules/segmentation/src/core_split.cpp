@@ -428,7 +428,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
                 Eigen::Matrix3d second;
                 second << xx, xy, xz, xy, yy, yz, xz, yz, zz;
                 const Eigen::Matrix3d cov = second * inv - mean * mean.transpose();
-                const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly).eigenvalues();
+                const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(cov, Eigen::EigenvaluesOnly).eigenvalues();
                 // A solid's interior: neighbours all around (centred) and in every direction (isotropic).
                 boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
@@ -493,12 +493,18 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         const double core_depth = params.core_fraction * r.fruit_radius;
         // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
         near.emplace(pts, cell);
+        // Built over points already in its cell order, the grid keeps them in place (its sort
+        // is stable): position k holds point k, read there rather than through the view.
+        const auto point_at = [&](std::size_t k) {
+            const float* p = grid.point(static_cast<std::uint32_t>(k));
+            return pcl::PointXYZ(p[0], p[1], p[2]);
+        };
         std::vector<std::uint32_t> parent(m);
         std::iota(parent.begin(), parent.end(), 0u);
         const auto is_core = [&](std::size_t k) { return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth; };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
-                grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
+                grid.for_each_within(point_at(k), link, [&](std::uint32_t j, double) {
                     if (j != k && lab[j] == lab[k] && is_core(j)) {
                         const auto a = find(parent, static_cast<std::uint32_t>(k)), b = find(parent, j);
                         parent[std::max(a, b)] = std::min(a, b);
@@ -564,7 +570,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         std::vector<std::uint32_t> seeds(seed_start.back());
         {
             std::vector<std::uint32_t> at(seed_start.begin(), seed_start.end() - 1);
-            for (std::size_t k = 0; k < m; ++k) {  // in point order within each cluster
+            for (std::size_t k = 0; k < m; ++k) {  // in cell order: put in point order by the flood
                 if (assigned[k] != kNone) {
                     seeds[at[lab[k]]++] = static_cast<std::uint32_t>(k);
                 }
@@ -586,7 +592,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
             while (!heap.empty()) {
                 const std::uint32_t k = std::get<2>(heap.top());
                 heap.pop();
-                grid.for_each_within(pts[k], link, [&](std::uint32_t j, double) {
+                grid.for_each_within(point_at(k), link, [&](std::uint32_t j, double) {
                     // The cluster test first: other clusters' entries belong to other threads.
                     if (lab[j] == lab[k] && assigned[j] == kNone) {
                         assigned[j] = assigned[k];
@@ -608,7 +614,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
             bool left = false;
             for (auto& [k, to] : unreached) {
                 double best = std::numeric_limits<double>::infinity();
-                grid.for_each_within(pts[k], step, [&](std::uint32_t j, double d2) {
+                grid.for_each_within(point_at(k), step, [&](std::uint32_t j, double d2) {
                     if (assigned[j] != kNone && lab[j] == lab[k] && (d2 < best || (d2 == best && assigned[j] < to))) {
                         best = d2;
                         to = assigned[j];
