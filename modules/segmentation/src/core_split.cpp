@@ -459,6 +459,11 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
                 std::vector<double> d2;
 #pragma omp for schedule(dynamic, 4096)
                 for (std::int64_t k = 0; k < static_cast<std::int64_t>(m); ++k) {
+                    // The points are in cell order but their records are not: fetch ahead
+                    // (the grid holding them in order is freed while this one lives).
+                    if (k + 16 < static_cast<std::int64_t>(m)) {
+                        pts.prefetch(static_cast<std::size_t>(k) + 16);
+                    }
                     if (!boundary[k]) {
                         edges.knn_point(pts[k], 1, idx, d2);
                         depth[k] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));

@@ -124,6 +124,7 @@ TEST(Grid, WorksOnASubsetOfAView) {
     EXPECT_EQ(median_spacing(view), median_spacing(copy));
     for (std::uint32_t i = 0; i < copy.size(); ++i) {
         EXPECT_EQ(view[i].x, copy[i].x);
+        EXPECT_EQ(view.record(i), reinterpret_cast<const std::uint8_t*>(&c.points[pick[i]]));
     }
     expect_grid_knn_is_brute_force(Grid(view, 0.1), copy, 5);
     EXPECT_THROW((void)view.subset(pick), std::logic_error);  // no subset of a subset
