@@ -509,11 +509,12 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         const auto is_core = [&](std::size_t k) { return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth; };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
-                grid.for_each_within(point_at(k), link, [&](std::uint32_t j, double) {
-                    if (j != k && lab[j] == lab[k] && is_core(j)) {
-                        const auto a = find(parent, static_cast<std::uint32_t>(k)), b = find(parent, j);
-                        parent[std::max(a, b)] = std::min(a, b);
-                    }
+                // Each pair once (from its lower point): the sets, and their smallest members as
+                // roots, do not depend on the order of the unions.
+                const auto later_core = [&](std::uint32_t j) { return j > k && lab[j] == lab[k] && is_core(j); };
+                grid.for_each_within_if(point_at(k), link, later_core, [&](std::uint32_t j, double) {
+                    const auto a = find(parent, static_cast<std::uint32_t>(k)), b = find(parent, j);
+                    parent[std::max(a, b)] = std::min(a, b);
                 });
             }
         }
@@ -597,12 +598,11 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
             while (!heap.empty()) {
                 const std::uint32_t k = std::get<2>(heap.top());
                 heap.pop();
-                grid.for_each_within(point_at(k), link, [&](std::uint32_t j, double) {
-                    // The cluster test first: other clusters' entries belong to other threads.
-                    if (lab[j] == lab[k] && assigned[j] == kNone) {
-                        assigned[j] = assigned[k];
-                        heap.emplace(depth[j], ~seq++, j);
-                    }
+                // The cluster test first: other clusters' entries belong to other threads.
+                const auto unreached_yet = [&](std::uint32_t j) { return lab[j] == lab[k] && assigned[j] == kNone; };
+                grid.for_each_within_if(point_at(k), link, unreached_yet, [&](std::uint32_t j, double) {
+                    assigned[j] = assigned[k];
+                    heap.emplace(depth[j], ~seq++, j);
                 });
             }
         }

@@ -220,13 +220,29 @@ TEST(Grid, RadiusQueryMatchesBruteForceIncludingExactDistances) {
             std::vector<std::uint32_t> got;
             grid.for_each_within(c[i], r, [&](std::uint32_t j, double) { got.push_back(j); });
             std::sort(got.begin(), got.end());
-            std::vector<std::uint32_t> want;
+            // The filtered form: the points the predicate accepts, each asked about once.
+            std::vector<std::uint32_t> odd, asked;
+            grid.for_each_within_if(
+                c[i], r, [&](std::uint32_t j) { asked.push_back(j); return j % 2 == 1; },
+                [&](std::uint32_t j, double d2) {
+                    EXPECT_EQ(d2, test::dist2(c[i], c[j]));
+                    odd.push_back(j);
+                });
+            std::sort(odd.begin(), odd.end());
+            std::sort(asked.begin(), asked.end());
+            EXPECT_TRUE(std::adjacent_find(asked.begin(), asked.end()) == asked.end());
+            std::vector<std::uint32_t> want, want_odd;
             for (std::uint32_t j = 0; j < c.size(); ++j) {
                 if (test::dist2(c[i], c[j]) <= r * r) {
                     want.push_back(j);
+                    if (j % 2 == 1) {
+                        want_odd.push_back(j);
+                    }
                 }
             }
             ASSERT_EQ(got, want) << "point " << i << " r " << r;
+            ASSERT_EQ(odd, want_odd) << "point " << i << " r " << r;
+            ASSERT_TRUE(std::includes(asked.begin(), asked.end(), want.begin(), want.end()));
         }
     }
 }

@@ -69,6 +69,11 @@ public:
     template <class F>
     void for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const;
 
+    /// The same for the points that `keep(index)` accepts, asked before their distance is
+    /// computed: for searches that skip most of what they find (e.g. points already visited).
+    template <class Keep, class F>
+    void for_each_within_if(const pcl::PointXYZ& q, double radius, Keep&& keep, F&& f) const;
+
     /// The k nearest points to cloud point `self` other than itself: indices and d², ascending
     /// by (d², index). Fewer than k when the cloud has fewer other finite points; none when
     /// `self` is not finite.
@@ -215,6 +220,11 @@ private:
 
 template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
+    for_each_within_if(q, radius, [](std::uint32_t) { return true; }, f);
+}
+
+template <class Keep, class F>
+void Grid::for_each_within_if(const pcl::PointXYZ& q, double radius, Keep&& keep, F&& f) const {
     const double r2 = radius * radius;
     const std::int64_t cx = coord(q.x, 0), cy = coord(q.y, 1), cz = coord(q.z, 2);
     // Nine rows (one hash look-up each), then the cells z - 1 .. z + 1 of each row.
@@ -223,13 +233,17 @@ void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
             const auto [first, last] = row_span(cx + dx, cy + dy, cz - 1, cz + 1);
             for (const Cell* cell = first; cell < last; ++cell) {
                 for (std::uint32_t s = cell->begin; s < cell->end(); ++s) {
+                    const std::uint32_t i = order_[s];
+                    if (!keep(i)) {
+                        continue;
+                    }
                     const float* p = point(s);
                     const double ex = double{p[0]} - q.x;
                     const double ey = double{p[1]} - q.y;
                     const double ez = double{p[2]} - q.z;
                     const double d2 = ex * ex + ey * ey + ez * ez;
                     if (d2 <= r2) {
-                        f(order_[s], d2);
+                        f(i, d2);
                     }
                 }
             }
