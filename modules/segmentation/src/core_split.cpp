@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <numeric>
-#include <initializer_list>
 #include <optional>
 #include <queue>
 #include <string>
@@ -365,8 +365,9 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
     // The compacted points are renumbered in the search grid's cell order, so that the points a
     // search finds, and their entries in every per-point array, lie near each other in memory
     // (in point order, the core joining, the depths and the flood waited on memory: 1M -> 4M
-    // points took 5x longer). Where order decides a result (the flood's seeds, the sampled
-    // patches and the member lists), point order is used; the arrays return to it after step 5.
+    // points took 5x longer). Where order decides a result (the flood's seeds, the cores' part
+    // numbers, the sampled patches and the member lists), point order is used; the arrays
+    // return to it after step 5.
     std::optional<search::Grid> near;
     if (r.spacing > 0) {
         near.emplace(base.subset(positions), cell);
