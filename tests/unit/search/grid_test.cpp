@@ -454,6 +454,26 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
     EXPECT_THROW(in_place.renumber_by_position(), std::logic_error);
 }
 
+TEST(Grid, RebuiltOverACloudInItsCellOrderItKeepsEveryPointInPlace) {
+    // core_split reads position k's coordinates as point k's once it has rebuilt its grid over
+    // points already in cell order: that needs the build's sort to be stable, also on two
+    // threads (clouds of 2^16 points and more) and with 64-bit keys.
+    for (const auto& [points, cell] : std::vector<std::pair<std::uint32_t, double>>{{3000, 0.08}, {120000, 0.02}, {120000, 2e-6}}) {
+        const Cloud c = test::uniform(points, 1.0f, 23);
+        const Grid first(c, cell);
+        Cloud sorted;
+        for (std::uint32_t s = 0; s < c.size(); ++s) {
+            sorted.push_back(c[first.index_of(s)]);
+        }
+        const Grid rebuilt(sorted, cell);
+        std::uint32_t moved = 0;
+        for (std::uint32_t s = 0; s < sorted.size(); ++s) {
+            moved += rebuilt.index_of(s) != s || rebuilt.point(s)[0] != sorted[s].x;
+        }
+        EXPECT_EQ(moved, 0u) << points << " points, cell " << cell;
+    }
+}
+
 /// Mean over the points of how many points share their cell.
 double point_occupancy(const Cloud& c, double cell) {
     std::map<std::tuple<long, long, long>, int> count;
