@@ -139,9 +139,14 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
 }
 
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
-    // The labels' copy is handed over: the cores rule reuses its storage.
-    const segmentation::RecursiveSplitResult r =
-        segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
+    // The labels' copy is handed over: the cores rule reuses its storage. Thin points
+    // (records_to_sort): the cores rule sorts them where they are and puts them back.
+    const segmentation::RecursiveSplitResult r = [&] {
+        if (const auto records = records_to_sort(in)) {
+            return segmentation::recursive_split(*records, io::labels(in, "label"), p);
+        }
+        return segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
+    }();
     const std::string how = p.rule == segmentation::SplitRule::kCores
                                 ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
                                       ", estimated fruit radius " + format_number(r.fruit_radius) +
@@ -188,7 +193,8 @@ ChainResult run_chain(io::Blob in, const ChainParams& p,
 segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min_points) {
     const auto labels =
         labelled.size() ? io::labels(labelled, "label") : std::vector<std::uint32_t>{};
-    return segmentation::summarize_clusters(io::xyz(labelled), labels, min_points);
+    // A view of the points (a copy only when x y z are not F 4): no cloud of 16 bytes a point.
+    return segmentation::summarize_clusters(io::XyzPoints(labelled).view(), labels, min_points);
 }
 
 std::string count_report(const segmentation::ClusterSummary& s, std::optional<double> gt) {

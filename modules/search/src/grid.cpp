@@ -617,7 +617,7 @@ Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell, Lent lent
 }
 
 void Grid::restore_order(const XyzRecords& records) {
-    if (!in_place_ || records.base != sorted_.base || records.size != sorted_.size ||
+    if (!in_place_ || identity_ || records.base != sorted_.base || records.size != sorted_.size ||
         records.stride != sorted_.stride) {
         throw std::logic_error("grid: restore_order() of records the grid did not sort");
     }
@@ -786,7 +786,7 @@ void Grid::search(const pcl::PointXYZ& q,
     margin = std::max(margin, 0.0);
     const auto consider = [&](const Cell& cell) {
         for (std::uint32_t s = cell.begin; s < cell.end(); ++s) {
-            const std::uint32_t i = order_[s];
+            const std::uint32_t i = index_of(s);
             if (i == self) {
                 continue;
             }
@@ -934,7 +934,7 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
             for (std::uint32_t p = node.begin; p < node.end; ++p) {
                 const Cell& cell = cells_[tree_perm_[p]];
                 for (std::uint32_t s = cell.begin; s < cell.end(); ++s) {
-                    const std::uint32_t i = order_[s];
+                    const std::uint32_t i = index_of(s);
                     if (i == self) {
                         continue;
                     }
@@ -969,11 +969,35 @@ void Grid::release_all_but_order() {
 }
 
 void Grid::renumber_by_position() {
-    if (in_place_ || finite_ != points_.size) {
-        throw std::logic_error("Grid::renumber_by_position: needs a copied grid over finite points only");
+    if (finite_ != (in_place_ ? sorted_.size : points_.size)) {
+        throw std::logic_error("Grid::renumber_by_position: needs a grid over finite points only");
     }
-    std::iota(order_.begin(), order_.end(), 0u);
+    order_ = {};
+    std::vector<std::uint32_t>().swap(own_order_);
+    identity_ = true;
     has_points_ = false;
+}
+
+void Grid::order_cells_by_index() {
+    if (!in_place_ || identity_) {
+        throw std::logic_error("Grid::order_cells_by_index: needs a grid that sorted records in place");
+    }
+    const auto cells = static_cast<std::int64_t>(cell_count());
+#pragma omp parallel for schedule(dynamic, 1024)
+    for (std::int64_t c = 0; c < cells; ++c) {
+        const std::uint32_t b = cell_begin(static_cast<std::size_t>(c)), e = cell_end(static_cast<std::size_t>(c));
+        if (e - b > 1 && !std::is_sorted(order_.begin() + b, order_.begin() + e)) {
+            flag_sort<std::uint32_t>(sorted_.base + std::size_t{b} * sorted_.stride, sorted_.stride, order_.data() + b,
+                                     nullptr, e - b);
+        }
+    }
+}
+
+void permute_records(const XyzRecords& records, std::span<std::uint32_t> to) {
+    if (to.size() != records.size || records.stride % sizeof(float) != 0) {
+        throw std::logic_error("permute_records: one place per record, records of whole words");
+    }
+    flag_sort<std::uint32_t>(records.base, records.stride, to.data(), nullptr, to.size());
 }
 
 void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {
@@ -1100,7 +1124,7 @@ void Grid::all_knn(std::size_t k,
                         const double ex = px - q[0], ey = py - q[1], ez = pz - q[2];
                         const double dd = ex * ex + ey * ey + ez * ez;
                         if (dd <= worst && t != s) {
-                            insert_candidate(order_[t], dd, k, w.idx, w.d2);
+                            insert_candidate(index_of(t), dd, k, w.idx, w.d2);
                             if (w.idx.size() == k) {
                                 worst = w.d2.back();
                             }
@@ -1139,7 +1163,7 @@ void Grid::all_knn(std::size_t k,
                     continue;
                 }
             }
-            f(order_[s], w.idx, w.d2);
+            f(index_of(s), w.idx, w.d2);
         }
         if (!w.far.empty()) {
             const std::lock_guard<std::mutex> lock(far_mutex);
@@ -1158,14 +1182,17 @@ void Grid::all_knn(std::size_t k,
         for (std::int64_t at = 0; at < static_cast<std::int64_t>(far_points.size()); ++at) {
             const std::uint32_t s = far_points[static_cast<std::size_t>(at)];
             const float* p = point(s);
-            tree_knn(pcl::PointXYZ(p[0], p[1], p[2]), order_[s], k, idx, d2);
-            f(order_[s], idx, d2);
+            tree_knn(pcl::PointXYZ(p[0], p[1], p[2]), index_of(s), k, idx, d2);
+            f(index_of(s), idx, d2);
         }
     }
 }
 
 double median_spacing(const XyzView& cloud, std::size_t samples) {
-    const Grid grid(cloud, Grid::suggest_cell(cloud, 16));
+    return median_spacing(Grid(cloud, Grid::suggest_cell(cloud, 16)), samples);
+}
+
+double median_spacing(const Grid& grid, std::size_t samples) {
     if (grid.finite_count() < 2) {
         return 0;
     }
@@ -1174,9 +1201,12 @@ double median_spacing(const XyzView& cloud, std::size_t samples) {
     std::vector<std::uint32_t> idx;
     std::vector<double> d2;
     for (std::size_t s = 0; s < grid.finite_count(); s += stride) {
-        grid.knn(grid.index_of(static_cast<std::uint32_t>(s)), 1, idx, d2);
-        if (!d2.empty() && d2[0] > 0) {
-            d.push_back(std::sqrt(d2[0]));
+        // The two nearest to the point's own coordinates: itself (0) first, then its nearest
+        // other point, unless another coincides with it (then both are 0 and it is skipped).
+        const float* p = grid.point(static_cast<std::uint32_t>(s));
+        grid.knn_point(pcl::PointXYZ(p[0], p[1], p[2]), 2, idx, d2);
+        if (d2.size() == 2 && d2[1] > 0) {
+            d.push_back(std::sqrt(d2[1]));
         }
     }
     return d.empty() ? 0 : median(d);

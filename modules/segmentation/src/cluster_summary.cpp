@@ -8,16 +8,16 @@
 
 namespace pc::segmentation {
 
-ClusterSummary summarize_clusters(const Cloud& cloud,
+ClusterSummary summarize_clusters(const XyzView& cloud,
                                   std::span<const std::uint32_t> labels,
                                   std::size_t min_points) {
-    if (labels.size() != cloud.size()) {
+    if (labels.size() != cloud.size) {
         throw InvalidArgument("summarize_clusters: labels must be one per point");
     }
     std::map<std::uint32_t, ClusterInfo> acc;
     ClusterSummary s;
-    for (std::size_t i = 0; i < cloud.size(); ++i) {
-        const auto& p = cloud[i];
+    for (std::size_t i = 0; i < cloud.size; ++i) {
+        const pcl::PointXYZ p = cloud[i];
         if (labels[i] == 0 || !is_finite(p)) {
             ++s.noise_points;
             continue;

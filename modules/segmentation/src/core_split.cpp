@@ -9,6 +9,7 @@
 #include <numeric>
 #include <optional>
 #include <queue>
+#include <stdexcept>
 #include <string>
 #include <tuple>
 #include <type_traits>
@@ -40,13 +41,14 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     return x;
 }
 
-/// Puts core_split's per-point arrays (`words`, and `depth`; those not of the points' number are
-/// left alone) back in point order after it worked in cell order. The compacted points' cloud
-/// indices (`index`, below n) rise in point order, so a point's place is the number of indices
-/// below its own: a bit per cloud point and a running count per 64 of them give it without a
-/// sort. The arrays keep their storage (views of them stay valid); `index` is put back last.
+/// Puts core_split's per-point arrays (`words`, `depth` and `index`) and the points' records back
+/// in point order after it worked in cell order. The compacted points' cloud indices (`index`,
+/// below n) rise in point order, so a point's place is the number of indices below its own: a
+/// bit per cloud point and a running count per 64 of them give it without a sort. The arrays are
+/// permuted where they are (views of them stay valid; no second array beside them at the peak).
 void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n,
-                         std::initializer_list<std::vector<std::uint32_t>*> words, std::vector<float>& depth) {
+                         std::initializer_list<std::vector<std::uint32_t>*> words, std::vector<float>& depth,
+                         const XyzRecords& records) {
     const std::size_t m = index.size();
     std::vector<std::uint32_t> place(m);
     {
@@ -64,21 +66,40 @@ void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n,
             place[k] = below[i / 64] + static_cast<std::uint32_t>(std::popcount(lower));
         }
     }
-    const auto put_back = [&](auto& v) {
-        if (v.size() != m) {
-            return;
+    // Each cycle of the permutation is walked once, every array's element in hand going to its
+    // place and taking up the one there; a high bit in `place` marks the places done (m < 2^30).
+    std::vector<std::vector<std::uint32_t>*> arrays(words);
+    arrays.push_back(&index);
+    constexpr std::uint32_t kDone = 0x80000000u;
+    std::vector<std::uint32_t> held(arrays.size());
+    for (std::size_t k = 0; k < m; ++k) {
+        if ((place[k] & kDone) != 0) {
+            continue;
         }
-        std::remove_reference_t<decltype(v)> moved(m);
-        for (std::size_t k = 0; k < m; ++k) {
-            moved[place[k]] = v[k];
+        for (std::size_t a = 0; a < arrays.size(); ++a) {
+            held[a] = (*arrays[a])[k];
         }
-        std::copy(moved.begin(), moved.end(), v.begin());
-    };
-    for (auto* v : words) {
-        put_back(*v);
+        float held_depth = depth[k];
+        std::uint32_t at = place[k];
+        place[k] |= kDone;
+        while (at != k) {
+            for (std::size_t a = 0; a < arrays.size(); ++a) {
+                std::swap(held[a], (*arrays[a])[at]);
+            }
+            std::swap(held_depth, depth[at]);
+            const std::uint32_t next = place[at];
+            place[at] |= kDone;
+            at = next;
+        }
+        for (std::size_t a = 0; a < arrays.size(); ++a) {
+            (*arrays[a])[k] = held[a];
+        }
+        depth[k] = held_depth;
     }
-    put_back(depth);
-    put_back(index);
+    for (auto& p : place) {
+        p &= ~kDone;
+    }
+    search::permute_records(records, place);
 }
 
 /// The fruit radius from the curvature of hollow surfaces: least-squares spheres through patches
@@ -313,84 +334,132 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
     return core_split(cloud, std::vector<std::uint32_t>(labels.begin(), labels.end()), params);
 }
 
-CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
-    params.validate();
+namespace {
+
+/// The clustered points, compacted: point k is cloud point index[k] (rising with k) of cluster
+/// lab[k] (dense 0..clusters-1). Non-finite points are left out (noise).
+struct Clustered {
+    std::vector<std::uint32_t> index, lab;
+    std::uint32_t clusters = 0;
+};
+
+Clustered compact(const XyzView& cloud, std::vector<std::uint32_t>&& labels) {
     const std::size_t n = cloud.size;
     if (labels.size() != n) {
         throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
                               std::to_string(labels.size()));
     }
-    // The clustered points, compacted: pts[k] is cloud[index[k]] (a view, no copy of the
-    // coordinates) with cluster lab[k] (dense 0..C-1), written over the labels (k <= i).
     std::uint32_t max_label = 0;
     std::size_t clustered = 0;  // counted first: growing the index would leave 2x behind
     for (std::uint32_t i = 0; i < n; ++i) {
         max_label = std::max(max_label, labels[i]);
         clustered += labels[i] != 0 && is_finite(cloud[i]);
     }
+    if (clustered > kValue) {
+        throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(clustered));
+    }
     std::vector<std::uint32_t> dense(std::size_t{max_label} + 1, kNone);
-    std::vector<std::uint32_t> index, lab = std::move(labels);
-    std::uint32_t clusters = 0;
-    index.reserve(clustered);
+    Clustered c;
+    c.lab = std::move(labels);  // written over (k <= i)
+    c.index.reserve(clustered);
     for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t l = lab[i];
+        const std::uint32_t l = c.lab[i];
         if (l != 0 && is_finite(cloud[i])) {
             if (dense[l] == kNone) {
-                dense[l] = clusters++;
+                dense[l] = c.clusters++;
             }
-            lab[index.size()] = dense[l];
-            index.push_back(i);
+            c.lab[c.index.size()] = dense[l];
+            c.index.push_back(i);
         }
     }
-    lab.resize(index.size());
-    // A view that is itself a subset: its positions are translated once (the only extra copy).
-    std::vector<std::uint32_t> through;
-    XyzView base = cloud;
-    if (cloud.index != nullptr) {
-        through.reserve(index.size());
-        for (auto i : index) {
-            through.push_back(cloud.index[i]);
+    c.lab.resize(c.index.size());
+    return c;
+}
+
+/// The labels over the whole cloud from each clustered point's `local` label, and the depths;
+/// parts smaller than the size limits become noise, the rest are numbered by size.
+CoreSplitResult finish(std::size_t n, Clustered&& c, std::vector<std::uint32_t>&& local, const std::vector<float>& depth,
+                       const CoreSplitParams& params, CoreSplitResult&& r) {
+    std::vector<std::uint32_t> out(n, 0);
+    std::uint32_t top = 0;
+    for (std::size_t k = 0; k < local.size(); ++k) {
+        out[c.index[k]] = local[k];
+        top = std::max(top, local[k]);
+    }
+    std::vector<std::uint32_t>().swap(local);
+    std::vector<std::uint32_t>().swap(c.lab);
+    r.depth.assign(n, 0.0f);
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        r.depth[c.index[k]] = depth[k];
+    }
+    std::uint32_t min_size = params.min_cluster_size;
+    if (params.min_relative_size > 0) {
+        std::vector<double> sizes(std::size_t{top} + 1, 0.0);
+        for (auto l : out) {
+            sizes[l] += 1;
         }
-        base.index = nullptr;
+        std::vector<double> present;
+        for (std::size_t l = 1; l < sizes.size(); ++l) {
+            if (sizes[l] > 0) {
+                present.push_back(sizes[l]);
+            }
+        }
+        if (!present.empty()) {
+            min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
+        }
     }
-    std::vector<std::uint32_t>& positions = cloud.index != nullptr ? through : index;  // in `base`
-    const std::size_t m = positions.size();
-    if (m > kValue) {
-        throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(m));
+    r.cluster_count = renumber_by_size(out, min_size);
+    r.labels = std::move(out);
+    return r;
+}
+
+/// core_split() over the clustered points' records `recs` (point k at record k, in point order;
+/// sorted in cell order while it works, back in point order when it returns): each clustered
+/// point's label (1.., before the size limits), its depth (`depth`) and the rest of `r`.
+std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n, Clustered& points, std::vector<float>& depth,
+                                           const CoreSplitParams& params, CoreSplitResult& r) {
+    std::vector<std::uint32_t>& index = points.index;
+    std::vector<std::uint32_t>& lab = points.lab;
+    const std::uint32_t clusters = points.clusters;
+    const std::size_t m = index.size();
+    const XyzView pts = recs.view();
+    if (m >= 2) {
+        // median_spacing() of the points, from a grid that sorts their records where they are
+        // (in each cell in point order: the samples, taken by position, are a copying grid's).
+        search::Grid grid(search::Grid::kInPlace, recs, search::Grid::suggest_cell(pts, 16));
+        grid.order_cells_by_index();
+        r.spacing = search::median_spacing(grid);
+        grid.restore_order(recs);
     }
-    CoreSplitResult r;  // r.depth is allocated at the end, once the working arrays are freed
-    r.spacing = search::median_spacing(base.subset(positions));  // sampled in point order
     const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
     const double cell = std::max(rb, link);
-    // The compacted points are renumbered in the search grid's cell order, so that the points a
-    // search finds, and their entries in every per-point array, lie near each other in memory
-    // (in point order, the core joining, the depths and the flood waited on memory: 1M -> 4M
-    // points took 5x longer). Where order decides a result (the flood's seeds, the cores' part
-    // numbers, the sampled patches and the member lists), point order is used; the arrays
-    // return to it after step 5.
+    // The points are renumbered in the search grid's cell order, so that the points a search
+    // finds, and their entries in every per-point array, lie near each other in memory (in
+    // point order, the core joining, the depths and the flood waited on memory: 1M -> 4M points
+    // took 5x longer). The grid sorts the records themselves (no copy of the coordinates) and
+    // serves steps 1 to 5. Where order decides a result (the flood's seeds, the cores' part
+    // numbers, the sampled patches and the member lists), point order is used; the arrays and
+    // the records return to it after step 5.
     std::optional<search::Grid> near;
     if (r.spacing > 0) {
-        near.emplace(base.subset(positions), cell);
+        near.emplace(search::Grid::kInPlace, recs, cell);
+        near->order_cells_by_index();  // equal cells in point order: the flood's ties as before
         std::vector<std::uint32_t> moved(m);
-        for (auto* v : {&index, &through, &lab}) {
-            if (v->size() == m) {
-                for (std::uint32_t q = 0; q < m; ++q) {
-                    moved[q] = (*v)[near->index_of(q)];
-                }
-                v->swap(moved);
+        for (auto* v : {&index, &lab}) {
+            for (std::uint32_t q = 0; q < m; ++q) {
+                moved[q] = (*v)[near->index_of(q)];
             }
+            v->swap(moved);
         }
         near->renumber_by_position();
     }
-    const XyzView pts = base.subset(positions);
     std::vector<std::uint32_t> part;  // part within the cluster, 0-based (the flood's result)
     std::vector<std::uint32_t> parts(clusters, 1);
     std::vector<std::uint8_t> hollow;  // per cluster, set once the depths are known
-    std::vector<float> depth(m, 0.0f);  // per compacted point: distance to the nearest boundary point
+    depth.assign(m, 0.0f);  // per compacted point: distance to the nearest boundary point
     if (r.spacing > 0) {
         // 1. Boundary: neighbours of the same cluster lie mostly to one side. Swept cell by cell:
-        //    the neighbour cells are found once per cell, not once per point. The grid is built
-        //    again for step 4: freed meanwhile, it does not add to the boundary grid's peak.
+        //    the neighbour cells are found once per cell, not once per point.
         std::vector<std::uint8_t> boundary(m, 0);
         const double rb2 = rb * rb;
         const search::Grid& grid = *near;
@@ -434,47 +503,46 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
                 boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
         });
-        near.reset();
-        // 2. Depth: distance to the nearest boundary point, from a grid over the boundary points
-        //    (a view of them: their positions only).
-        std::unique_ptr<search::Grid> edge_grid;
-        {
-            std::vector<std::uint32_t> edge_index;  // positions in `base`: a view, no copy
-            edge_index.reserve(static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1})));
-            for (std::size_t k = 0; k < m; ++k) {
-                if (boundary[k]) {
-                    edge_index.push_back(pts.index[k]);
+        // 2. Depth: distance to the nearest boundary point. The records are parted for it, the
+        //    boundary points' first (each part in cell order): a grid sorts the boundary part in
+        //    place (no copy of it), the interior part is looked up in order, and the records go
+        //    back to cell order (where the search grid, kept for step 4, finds them).
+        const auto e = static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1}));
+        if (e > 0 && e < m) {
+            const auto part_records = [&](bool back) {
+                std::vector<std::uint32_t> to(m);
+                auto first = std::uint32_t{0}, second = static_cast<std::uint32_t>(e);
+                for (std::uint32_t k = 0; k < m; ++k) {
+                    const std::uint32_t at = boundary[k] ? first++ : second++;
+                    to[back ? at : k] = back ? k : at;
                 }
-            }
-            if (!edge_index.empty()) {
-                const XyzView edge = base.subset(edge_index);
-                edge_grid = std::make_unique<search::Grid>(edge, search::Grid::suggest_cell(edge, 16));
-                edge_grid->release_cloud();
-            }
-        }
-        if (edge_grid) {
-            const search::Grid& edges = *edge_grid;
+                search::permute_records(recs, to);
+            };
+            part_records(false);
+            XyzRecords edge = recs;
+            edge.size = e;
+            search::Grid edges(search::Grid::kInPlace, edge, search::Grid::suggest_cell(edge.view(), 16));
+            // The j-th interior point (record e + j) gets its depth in depth[j] first.
 #pragma omp parallel
             {
                 std::vector<std::uint32_t> idx;
                 std::vector<double> d2;
 #pragma omp for schedule(dynamic, 4096)
-                for (std::int64_t k = 0; k < static_cast<std::int64_t>(m); ++k) {
-                    // The points are in cell order but their records are not: fetch ahead
-                    // (the grid holding them in order is freed while this one lives).
-                    if (k + 16 < static_cast<std::int64_t>(m)) {
-                        pts.prefetch(static_cast<std::size_t>(k) + 16);
-                    }
-                    if (!boundary[k]) {
-                        edges.knn_point(pts[k], 1, idx, d2);
-                        depth[k] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
-                    }
+                for (std::int64_t j = 0; j < static_cast<std::int64_t>(m - e); ++j) {
+                    edges.knn_point(pts[e + static_cast<std::size_t>(j)], 1, idx, d2);
+                    depth[static_cast<std::size_t>(j)] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
                 }
             }
+            // Spread to each point's own entry, from the last: entry j is read before any entry
+            // at or below it is written.
+            for (std::size_t k = m, left = m - e; k-- > 0;) {
+                depth[k] = boundary[k] ? 0.0f : depth[--left];
+            }
+            edges.restore_order(edge);
+            part_records(true);
         }
         // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
         //    inside) and the fruit radius: the median over solid clusters of their greatest depth.
-        edge_grid.reset();
         std::vector<std::uint8_t>().swap(boundary);
         std::vector<double> deepest(clusters, 0.0), inside(clusters, 0.0), size(clusters, 0.0);
         for (std::size_t k = 0; k < m; ++k) {
@@ -498,9 +566,6 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         }
         const double core_depth = params.core_fraction * r.fruit_radius;
         // 4. Cores: deep points joined through `link` (union-find); small ones are dropped.
-        near.emplace(pts, cell);
-        // Built over points already in its cell order, the grid keeps them in place (its sort
-        // is stable): position k holds point k, read there rather than through the view.
         const auto point_at = [&](std::size_t k) {
             const float* p = grid.point(static_cast<std::uint32_t>(k));
             return pcl::PointXYZ(p[0], p[1], p[2]);
@@ -642,7 +707,7 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
         std::vector<std::uint32_t>().swap(seeds);
-        back_to_point_order(index, n, {&through, &lab, &part}, depth);
+        back_to_point_order(index, n, {&lab, &part}, depth, recs);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
             r.splits += cores[c] >= 2;
@@ -670,35 +735,69 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         merge_solid_fragments(pts, depth, local, first[clusters], params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
                               r.merged_fragments);
     }
-    std::vector<std::uint32_t> out(n, 0);
+    return local;
+}
+
+}  // namespace
+
+CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
+    params.validate();
+    Clustered c = compact(cloud, std::move(labels));
+    // The clustered points' coordinates, copied in point order: the grids sort this copy.
+    const std::size_t m = c.index.size();
+    std::vector<float> xyz(3 * m);
     for (std::size_t k = 0; k < m; ++k) {
-        out[index[k]] = local[k];
+        const pcl::PointXYZ p = cloud[c.index[k]];
+        xyz[3 * k] = p.x;
+        xyz[3 * k + 1] = p.y;
+        xyz[3 * k + 2] = p.z;
     }
-    std::vector<std::uint32_t>().swap(local);
-    std::vector<std::uint32_t>().swap(lab);
-    r.depth.assign(n, 0.0f);
-    for (std::size_t k = 0; k < m; ++k) {
-        r.depth[index[k]] = depth[k];
+    CoreSplitResult r;
+    std::vector<float> depth;
+    std::vector<std::uint32_t> local =
+        split_clustered({.base = reinterpret_cast<std::uint8_t*>(xyz.data()), .stride = 3 * sizeof(float), .size = m},
+                        cloud.size, c, depth, params, r);
+    std::vector<float>().swap(xyz);
+    return finish(cloud.size, std::move(c), std::move(local), depth, params, std::move(r));
+}
+
+CoreSplitResult core_split(const XyzRecords& records, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
+    params.validate();
+    if (!records.aligned()) {
+        throw std::logic_error("core_split: records sorted in place need 4-aligned x y z floats");
     }
-    std::uint32_t min_size = params.min_cluster_size;
-    if (params.min_relative_size > 0) {
-        std::vector<double> sizes(first[clusters] + 1, 0.0);
-        for (auto l : out) {
-            sizes[l] += 1;
+    const std::size_t n = records.size;
+    Clustered c = compact(records.view(), std::move(labels));
+    const std::size_t m = c.index.size();
+    // The clustered points' records first, in point order (the others after them, in theirs),
+    // and every record back in its place at the end. All points clustered: nothing moves.
+    std::vector<std::uint32_t> to;
+    if (m < n) {
+        to.resize(n);
+        for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
+            to[i] = k < m && c.index[k] == i ? k++ : rest++;
         }
-        std::vector<double> present;
-        for (std::size_t l = 1; l < sizes.size(); ++l) {
-            if (sizes[l] > 0) {
-                present.push_back(sizes[l]);
+        search::permute_records(records, to);
+        std::vector<std::uint32_t>().swap(to);
+    }
+    CoreSplitResult r;
+    std::vector<float> depth;
+    XyzRecords clustered = records;
+    clustered.size = m;
+    std::vector<std::uint32_t> local = split_clustered(clustered, n, c, depth, params, r);
+    if (m < n) {
+        to.resize(n);
+        for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
+            if (k < m && c.index[k] == i) {
+                to[k++] = i;
+            } else {
+                to[rest++] = i;
             }
         }
-        if (!present.empty()) {
-            min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
-        }
+        search::permute_records(records, to);
+        std::vector<std::uint32_t>().swap(to);
     }
-    r.cluster_count = renumber_by_size(out, min_size);
-    r.labels = std::move(out);
-    return r;
+    return finish(n, std::move(c), std::move(local), depth, params, std::move(r));
 }
 
 }  // namespace pc::segmentation

@@ -93,8 +93,10 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
 
 namespace {
 
-RecursiveSplitResult by_cores(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const RecursiveSplitParams& params) {
-    CoreSplitResult c = core_split(cloud, std::move(labels), {.core_fraction = params.core_fraction,
+/// Points: an XyzView, or XyzRecords sorted in place.
+template <class Points>
+RecursiveSplitResult by_cores(const Points& points, std::vector<std::uint32_t>&& labels, const RecursiveSplitParams& params) {
+    CoreSplitResult c = core_split(points, std::move(labels), {.core_fraction = params.core_fraction,
                                                               .min_cluster_size = params.min_cluster_size,
                                                               .min_relative_size = params.min_relative_size});
     RecursiveSplitResult r;
@@ -117,6 +119,15 @@ RecursiveSplitResult recursive_split(const XyzView& cloud, std::vector<std::uint
         return by_cores(cloud, std::move(labels), params);
     }
     return recursive_split(cloud, std::span<const std::uint32_t>(labels), params);
+}
+
+RecursiveSplitResult recursive_split(const XyzRecords& records, std::vector<std::uint32_t>&& labels,
+                                     const RecursiveSplitParams& params) {
+    params.validate();
+    if (params.rule == SplitRule::kCores) {
+        return by_cores(records, std::move(labels), params);
+    }
+    return recursive_split(records.view(), std::span<const std::uint32_t>(labels), params);
 }
 
 RecursiveSplitResult recursive_split(const XyzView& cloud,

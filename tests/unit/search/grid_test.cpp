@@ -5,6 +5,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <random>
 #include <tuple>
 
@@ -352,6 +353,16 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
     EXPECT_THROW(grid.knn(0, 3, idx_a, d2_a), std::logic_error);  // the records have moved
     grid.restore_order(records);
     EXPECT_EQ(bytes, original);
+    // With each cell put in index order, the in-place grid's positions are the copying grid's.
+    Grid ordered(Grid::kInPlace, records, cell, lent);
+    ordered.order_cells_by_index();
+    for (std::uint32_t s = 0; s < ordered.finite_count(); ++s) {
+        ASSERT_EQ(ordered.index_of(s), copy.index_of(s)) << "position " << s;
+        ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[copy.index_of(s) * stride], stride)) << "position " << s;
+    }
+    EXPECT_EQ(median_spacing(ordered), median_spacing(copy));
+    ordered.restore_order(records);
+    EXPECT_EQ(bytes, original);
 }
 
 TEST(Grid, InPlaceSortsWholeRecordsAnswersAsTheCopyAndPutsThemBack) {
@@ -365,6 +376,69 @@ TEST(Grid, InPlaceSortsWholeRecordsAnswersAsTheCopyAndPutsThemBack) {
             expect_in_place_grid_equals_copy(c, cell, stride, offset);
         }
     }
+}
+
+TEST(Grid, InPlaceCellsInIndexOrderHoldManyEqualPoints) {
+    // Cells of hundreds of points, many of them equal (the order within such a cell is all the
+    // in-place sort leaves to chance).
+    Cloud c = test::uniform(20000, 1.0f, 31);
+    for (std::size_t i = 0; i < c.size(); i += 3) {
+        c[i] = c[i / 100];
+    }
+    expect_in_place_grid_equals_copy(c, 0.2, 16, 0);
+    Grid copy(c, 0.1);
+    EXPECT_THROW(copy.order_cells_by_index(), std::logic_error);
+}
+
+TEST(Grid, MedianSpacingIsTheMedianNearestOtherDistanceOfStridedSamples) {
+    // Brute force over the samples a copying grid of the suggested cell takes (every stride-th
+    // position); points with a coincident other point are skipped.
+    Cloud c = test::uniform(5000, 1.0f, 33);
+    for (std::size_t i = 0; i < 400; ++i) {
+        c[i + 1000] = c[i];
+    }
+    const Grid grid(c, Grid::suggest_cell(c, 16));
+    const std::size_t samples = 700, stride = c.size() / samples;
+    std::vector<double> d;
+    for (std::size_t s = 0; s < c.size(); s += stride) {
+        const auto& p = c[grid.index_of(static_cast<std::uint32_t>(s))];
+        double best = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < c.size(); ++j) {
+            if (j != grid.index_of(static_cast<std::uint32_t>(s))) {
+                const double ex = double{c[j].x} - p.x, ey = double{c[j].y} - p.y, ez = double{c[j].z} - p.z;
+                best = std::min(best, ex * ex + ey * ey + ez * ez);
+            }
+        }
+        if (best > 0) {
+            d.push_back(std::sqrt(best));
+        }
+    }
+    std::sort(d.begin(), d.end());
+    const std::size_t mid = (d.size() - 1) / 2;  // numpy's median, as pc::median computes it
+    const double want = d.size() % 2 ? d[mid] : d[mid] + 0.5 * (d[mid + 1] - d[mid]);
+    EXPECT_EQ(median_spacing(c, samples), want);
+    EXPECT_EQ(median_spacing(grid, samples), want);
+}
+
+TEST(Grid, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
+    const Cloud c = test::uniform(70000, 1.0f, 35);
+    std::vector<std::uint32_t> to(c.size());
+    std::iota(to.begin(), to.end(), 0u);
+    std::shuffle(to.begin(), to.end(), std::mt19937(5));
+    for (const std::size_t stride : {12u, 16u, 20u, 44u}) {
+        std::vector<std::uint8_t> bytes = records_of(c, stride, 0);
+        const std::vector<std::uint8_t> original = bytes;
+        std::vector<std::uint32_t> places = to;
+        permute_records(XyzRecords{bytes.data(), stride, c.size(), 0}, places);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            ASSERT_EQ(0, std::memcmp(&bytes[to[i] * stride], &original[i * stride], stride)) << "stride " << stride << ", record " << i;
+        }
+        EXPECT_TRUE(std::is_sorted(places.begin(), places.end()));
+    }
+    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    std::vector<std::uint32_t> short_places(c.size() - 1);
+    EXPECT_THROW(permute_records(XyzRecords{bytes.data(), 16, c.size(), 0}, short_places), std::logic_error);
+    EXPECT_THROW(permute_records(XyzRecords{bytes.data(), 14, c.size() - 1, 0}, short_places), std::logic_error);
 }
 
 TEST(Grid, InPlaceSortsFewRecordsWithRepeatedKeys) {
@@ -449,15 +523,29 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
     with_nan[5].x = std::numeric_limits<float>::quiet_NaN();
     Grid partial(with_nan, cell);
     EXPECT_THROW(partial.renumber_by_position(), std::logic_error);
+    // Built in place, the records stay in cell order; the grid can no longer put them back.
     std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
-    Grid in_place(Grid::kInPlace, XyzRecords{bytes.data(), 16, c.size(), 0}, cell);
-    EXPECT_THROW(in_place.renumber_by_position(), std::logic_error);
+    const XyzRecords records{bytes.data(), 16, c.size(), 0};
+    Grid in_place(Grid::kInPlace, records, cell);
+    in_place.order_cells_by_index();
+    in_place.renumber_by_position();
+    for (std::uint32_t s = 0; s < sorted.size(); s += 7) {
+        EXPECT_EQ(in_place.index_of(s), s);
+        EXPECT_EQ(records.view()[s].x, sorted[s].x);
+        std::vector<std::uint32_t> got, want;
+        in_place.for_each_within(sorted[s], cell, [&](std::uint32_t j, double) { got.push_back(j); });
+        rebuilt.for_each_within(sorted[s], cell, [&](std::uint32_t j, double) { want.push_back(j); });
+        EXPECT_EQ(got, want) << "position " << s;
+    }
+    EXPECT_THROW(in_place.restore_order(records), std::logic_error);
+    std::vector<std::uint8_t> nan_bytes = records_of(with_nan, 16, 0);
+    Grid in_place_nan(Grid::kInPlace, XyzRecords{nan_bytes.data(), 16, c.size(), 0}, cell);
+    EXPECT_THROW(in_place_nan.renumber_by_position(), std::logic_error);
 }
 
 TEST(Grid, RebuiltOverACloudInItsCellOrderItKeepsEveryPointInPlace) {
-    // core_split reads position k's coordinates as point k's once it has rebuilt its grid over
-    // points already in cell order: that needs the build's sort to be stable, also on two
-    // threads (clouds of 2^16 points and more) and with 64-bit keys.
+    // A copying grid's sort is stable, also on two threads (clouds of 2^16 points and more) and
+    // with 64-bit keys: rebuilt over points already in its cell order, it keeps them in place.
     for (const auto& [points, cell] : std::vector<std::pair<std::uint32_t, double>>{{3000, 0.08}, {120000, 0.02}, {120000, 2e-6}}) {
         const Cloud c = test::uniform(points, 1.0f, 23);
         const Grid first(c, cell);

@@ -22,6 +22,15 @@ namespace pc::search {
     return median_spacing(XyzView(cloud), samples);
 }
 
+class Grid;
+/// The same from a grid of cell Grid::suggest_cell(points, 16) over the points (copied, or
+/// sorted in place with Grid::order_cells_by_index(): the samples are taken by sorted position).
+[[nodiscard]] double median_spacing(const Grid& grid, std::size_t samples = 20000);
+
+/// Moves record i to place to[i] in place (`to`: a permutation of 0..size-1; it is left
+/// sorted). Records are whole 4-byte words (std::logic_error otherwise, or on a size mismatch).
+void permute_records(const XyzRecords& records, std::span<std::uint32_t> to);
+
 class Grid {
 public:
     Grid(const Grid&) = delete;
@@ -110,8 +119,8 @@ public:
     /// row (x, y), then the four rows sharing a face with it, then the four diagonal ones; by z
     /// within a row. Sweeps that stop once they have found enough look at the near cells first.
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
-    /// Original cloud index of sorted position s.
-    [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return order_[s]; }
+    /// Original cloud index of sorted position s (s itself once renumbered).
+    [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return identity_ ? s : order_[s]; }
     /// Coordinates (x, y, z) of sorted position s; position s + 1 is point_stride() floats on.
     [[nodiscard]] const float* point(std::uint32_t s) const { return xyz_at_ + stride_ * s; }
     /// Floats from one sorted position's coordinates to the next (3 unless built in place).
@@ -137,9 +146,16 @@ public:
     /// Renumbers the points by sorted position (index_of(s) == s afterwards), for a caller that
     /// keeps its per-point data in cell order, where neighbours lie near each other in memory:
     /// it moves its point index_of(s) to place s (reading index_of() before this call) and views
-    /// the points in that order. The grid forgets its cloud (as release_cloud()). Every point
-    /// must be finite, and the grid not built in place (std::logic_error).
+    /// the points in that order. The grid frees its order and forgets its cloud (as
+    /// release_cloud()). Built in place, the records stay in cell order for good (restore_order()
+    /// throws): the caller puts them back (permute_records()). Every point must be finite
+    /// (std::logic_error).
     void renumber_by_position();
+    /// Puts each cell's records, sorted in place, in their original order, as a grid that copies
+    /// the points has them (its sort is stable; the in-place sort is not): for callers whose
+    /// results depend on the order of equal cells. Only for a grid built in place
+    /// (std::logic_error).
+    void order_cells_by_index();
     [[nodiscard]] std::size_t finite_count() const { return finite_; }
 
 private:
@@ -211,6 +227,7 @@ private:
     std::size_t finite_ = 0;
     XyzRecords sorted_;                   // the records sorted in place, if in_place_
     bool in_place_ = false;
+    bool identity_ = false;  // renumbered: index_of(s) == s, no order kept
     std::vector<Cell> cells_;  // the occupied cells in key order, then the sentinel
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
@@ -233,7 +250,7 @@ void Grid::for_each_within_if(const pcl::PointXYZ& q, double radius, Keep&& keep
             const auto [first, last] = row_span(cx + dx, cy + dy, cz - 1, cz + 1);
             for (const Cell* cell = first; cell < last; ++cell) {
                 for (std::uint32_t s = cell->begin; s < cell->end(); ++s) {
-                    const std::uint32_t i = order_[s];
+                    const std::uint32_t i = index_of(s);
                     if (!keep(i)) {
                         continue;
                     }

@@ -24,8 +24,13 @@ struct ClusterSummary {
 
 /// Per-cluster statistics of a labelled cloud (pc_count's report). Non-finite points are counted
 /// as noise. Clusters with fewer than `min_points` points are not counted. O(n).
-[[nodiscard]] ClusterSummary summarize_clusters(const Cloud& cloud,
+[[nodiscard]] ClusterSummary summarize_clusters(const XyzView& points,
                                                 std::span<const std::uint32_t> labels,
                                                 std::size_t min_points = 1);
+[[nodiscard]] inline ClusterSummary summarize_clusters(const Cloud& cloud,
+                                                       std::span<const std::uint32_t> labels,
+                                                       std::size_t min_points = 1) {
+    return summarize_clusters(XyzView(cloud), labels, min_points);
+}
 
 }  // namespace pc::segmentation

@@ -61,6 +61,11 @@ struct RecursiveSplitResult {
 [[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
                                                    std::vector<std::uint32_t>&& labels,
                                                    const RecursiveSplitParams& params);
+/// The same over the points' own records: the cores rule sorts them where they are and puts
+/// them back (core_split() over records: no copy of the coordinates); the others view them.
+[[nodiscard]] RecursiveSplitResult recursive_split(const XyzRecords& records,
+                                                   std::vector<std::uint32_t>&& labels,
+                                                   const RecursiveSplitParams& params);
 [[nodiscard]] inline RecursiveSplitResult recursive_split(const Cloud& cloud,
                                                           std::span<const std::uint32_t> labels,
                                                           const RecursiveSplitParams& params) {
