@@ -106,7 +106,13 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
             p.eps = segmentation::estimate_eps(points.view(), p.min_points);
             note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
         } else if (eps.mode == EpsRule::Mode::kSpacing) {
-            const double s = search::median_spacing(points.view());
+            const double s = [&] {
+                if (const auto records = records_to_sort(in)) {  // sorted in place, not copied
+                    io::SpareWords spare(in);  // the grid's order, in room the labels fill later
+                    return search::median_spacing(*records, {.order = spare.words()});
+                }
+                return search::median_spacing(points.view());
+            }();
             // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
             p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
             note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
@@ -139,13 +145,19 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
 }
 
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
-    // The labels' copy is handed over: the cores rule reuses its storage. Thin points
-    // (records_to_sort): the cores rule sorts them where they are and puts them back.
+    // Thin points (records_to_sort) with U 4 labels: the labels are read and written where they
+    // are, and the cores rule sorts the records in place and puts them back. Others: the labels'
+    // copy is handed over (the cores rule reuses its storage).
     const segmentation::RecursiveSplitResult r = [&] {
-        if (const auto records = records_to_sort(in)) {
-            return segmentation::recursive_split(*records, io::labels(in, "label"), p);
+        const auto* label = io::find_field(in, "label");
+        const auto records = records_to_sort(in);
+        if (records && label != nullptr && label->datatype == pcl::PCLPointField::UINT32 && label->count == 1) {
+            return segmentation::recursive_split(*records, label->offset, p);
         }
-        return segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
+        segmentation::RecursiveSplitResult split =
+            segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
+        io::set_field(in, "label", split.labels);
+        return split;
     }();
     const std::string how = p.rule == segmentation::SplitRule::kCores
                                 ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
@@ -153,7 +165,6 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                                       (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius) : "") + ")"
                                 : "splits (thresholds: points > " + format_number(r.size_threshold) +
                                       ", AABB volume > " + format_number(r.volume_threshold) + ")";
-    io::set_field(in, "label", r.labels);
     return {std::move(in),
             "recursive_split: " + std::to_string(r.splits) + " " + how + ", " + std::to_string(r.cluster_count) +
                 " clusters"};

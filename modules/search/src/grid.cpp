@@ -1192,6 +1192,17 @@ double median_spacing(const XyzView& cloud, std::size_t samples) {
     return median_spacing(Grid(cloud, Grid::suggest_cell(cloud, 16)), samples);
 }
 
+double median_spacing(const XyzRecords& records, Grid::Lent lent, std::size_t samples) {
+    if (records.size < 2) {
+        return 0;
+    }
+    Grid grid(Grid::kInPlace, records, Grid::suggest_cell(records.view(), 16), lent);
+    grid.order_cells_by_index();
+    const double spacing = median_spacing(grid, samples);
+    grid.restore_order(records);
+    return spacing;
+}
+
 double median_spacing(const Grid& grid, std::size_t samples) {
     if (grid.finite_count() < 2) {
         return 0;

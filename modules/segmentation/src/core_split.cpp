@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <limits>
 #include <memory>
@@ -40,6 +41,20 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
     }
     return x;
 }
+
+/// The points' cluster ids: a 4-byte word in each of their records (read where it is, it moves
+/// with its record).
+struct LabelWords {
+    std::uint8_t* base = nullptr;
+    std::size_t stride = 0;
+    std::uint32_t offset = 0;
+    [[nodiscard]] std::uint32_t operator[](std::size_t k) const {
+        std::uint32_t v = 0;
+        std::memcpy(&v, base + k * stride + offset, sizeof v);
+        return v;
+    }
+    void set(std::size_t k, std::uint32_t v) const { std::memcpy(base + k * stride + offset, &v, sizeof v); }
+};
 
 /// Puts core_split's per-point arrays (`words`, `depth` and `index`) and the points' records back
 /// in point order after it worked in cell order. The compacted points' cloud indices (`index`,
@@ -107,7 +122,7 @@ void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n,
 /// patches that are spherical (RMS < 0.1 × radius) and curved (radius < 40 s). Also returns the
 /// points of a typical fruit: half of its sphere at the patches' median areal density. {0, 0} when
 /// fewer than 20 patches qualify.
-std::pair<double, double> radius_from_patches(const XyzView& pts, const std::vector<std::uint32_t>& lab,
+std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWords& lab,
                                               const std::vector<std::vector<std::uint32_t>>& members, double s) {
     Cloud surface;
     std::vector<std::uint32_t> owner;
@@ -149,7 +164,7 @@ std::pair<double, double> radius_from_patches(const XyzView& pts, const std::vec
 }
 
 /// Hollow clusters cut into spheres; see core_split().
-void split_hollow_clusters(const XyzView& pts, const std::vector<std::uint32_t>& lab, const std::vector<std::uint8_t>& hollow,
+void split_hollow_clusters(const XyzView& pts, const LabelWords& lab, const std::vector<std::uint8_t>& hollow,
                            const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
                            std::vector<std::uint32_t>& parts) {
     const auto clusters = static_cast<std::uint32_t>(hollow.size());
@@ -336,50 +351,53 @@ CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> 
 
 namespace {
 
-/// The clustered points, compacted: point k is cloud point index[k] (rising with k) of cluster
-/// lab[k] (dense 0..clusters-1). Non-finite points are left out (noise).
+/// The clustered points (a label other than 0, finite), in point order: point k is cloud point
+/// index[k]; label l is cluster dense[l] (kNone: no clustered point), numbered 0..clusters-1 in
+/// order of first appearance.
 struct Clustered {
-    std::vector<std::uint32_t> index, lab;
+    std::vector<std::uint32_t> index, dense;
     std::uint32_t clusters = 0;
 };
 
-Clustered compact(const XyzView& cloud, std::vector<std::uint32_t>&& labels) {
+template <class Labels>
+Clustered number_clusters(const XyzView& cloud, const Labels& label) {
     const std::size_t n = cloud.size;
-    if (labels.size() != n) {
-        throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
-                              std::to_string(labels.size()));
-    }
     std::uint32_t max_label = 0;
     std::size_t clustered = 0;  // counted first: growing the index would leave 2x behind
     for (std::uint32_t i = 0; i < n; ++i) {
-        max_label = std::max(max_label, labels[i]);
-        clustered += labels[i] != 0 && is_finite(cloud[i]);
+        max_label = std::max(max_label, label[i]);
+        clustered += label[i] != 0 && is_finite(cloud[i]);
     }
     if (clustered > kValue) {
         throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(clustered));
     }
-    std::vector<std::uint32_t> dense(std::size_t{max_label} + 1, kNone);
     Clustered c;
-    c.lab = std::move(labels);  // written over (k <= i)
+    c.dense.assign(std::size_t{max_label} + 1, kNone);
     c.index.reserve(clustered);
     for (std::uint32_t i = 0; i < n; ++i) {
-        const std::uint32_t l = c.lab[i];
+        const std::uint32_t l = label[i];
         if (l != 0 && is_finite(cloud[i])) {
-            if (dense[l] == kNone) {
-                dense[l] = c.clusters++;
+            if (c.dense[l] == kNone) {
+                c.dense[l] = c.clusters++;
             }
-            c.lab[c.index.size()] = dense[l];
             c.index.push_back(i);
         }
     }
-    c.lab.resize(c.index.size());
     return c;
 }
 
-/// The labels over the whole cloud from each clustered point's `local` label, and the depths;
-/// parts smaller than the size limits become noise, the rest are numbered by size.
-CoreSplitResult finish(std::size_t n, Clustered&& c, std::vector<std::uint32_t>&& local, const std::vector<float>& depth,
-                       const CoreSplitParams& params, CoreSplitResult&& r) {
+/// The labels over the whole cloud from each clustered point's `local` label, and the depths
+/// (unless `with_depth` is false: `depth` is freed); parts smaller than the size limits become
+/// noise, the rest are numbered by size.
+CoreSplitResult finish(std::size_t n, const Clustered& c, std::vector<std::uint32_t>&& local, std::vector<float>&& depth,
+                       bool with_depth, const CoreSplitParams& params, CoreSplitResult&& r) {
+    if (with_depth) {
+        r.depth.assign(n, 0.0f);
+        for (std::size_t k = 0; k < depth.size(); ++k) {
+            r.depth[c.index[k]] = depth[k];
+        }
+    }
+    std::vector<float>().swap(depth);
     std::vector<std::uint32_t> out(n, 0);
     std::uint32_t top = 0;
     for (std::size_t k = 0; k < local.size(); ++k) {
@@ -387,11 +405,6 @@ CoreSplitResult finish(std::size_t n, Clustered&& c, std::vector<std::uint32_t>&
         top = std::max(top, local[k]);
     }
     std::vector<std::uint32_t>().swap(local);
-    std::vector<std::uint32_t>().swap(c.lab);
-    r.depth.assign(n, 0.0f);
-    for (std::size_t k = 0; k < depth.size(); ++k) {
-        r.depth[c.index[k]] = depth[k];
-    }
     std::uint32_t min_size = params.min_cluster_size;
     if (params.min_relative_size > 0) {
         std::vector<double> sizes(std::size_t{top} + 1, 0.0);
@@ -414,23 +427,18 @@ CoreSplitResult finish(std::size_t n, Clustered&& c, std::vector<std::uint32_t>&
 }
 
 /// core_split() over the clustered points' records `recs` (point k at record k, in point order;
-/// sorted in cell order while it works, back in point order when it returns): each clustered
-/// point's label (1.., before the size limits), its depth (`depth`) and the rest of `r`.
-std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n, Clustered& points, std::vector<float>& depth,
-                                           const CoreSplitParams& params, CoreSplitResult& r) {
+/// sorted in cell order while it works, back in point order when it returns), each holding its
+/// cluster (0..clusters-1) in the word at `label_offset`: each clustered point's label (1..,
+/// before the size limits), its depth (`depth`) and the rest of `r`.
+std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t label_offset, std::size_t n,
+                                           Clustered& points, std::vector<float>& depth, const CoreSplitParams& params,
+                                           CoreSplitResult& r) {
     std::vector<std::uint32_t>& index = points.index;
-    std::vector<std::uint32_t>& lab = points.lab;
+    const LabelWords lab{recs.base, recs.stride, label_offset};
     const std::uint32_t clusters = points.clusters;
     const std::size_t m = index.size();
     const XyzView pts = recs.view();
-    if (m >= 2) {
-        // median_spacing() of the points, from a grid that sorts their records where they are
-        // (in each cell in point order: the samples, taken by position, are a copying grid's).
-        search::Grid grid(search::Grid::kInPlace, recs, search::Grid::suggest_cell(pts, 16));
-        grid.order_cells_by_index();
-        r.spacing = search::median_spacing(grid);
-        grid.restore_order(recs);
-    }
+    r.spacing = search::median_spacing(recs);
     const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
     const double cell = std::max(rb, link);
     // The points are renumbered in the search grid's cell order, so that the points a search
@@ -444,13 +452,11 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n
     if (r.spacing > 0) {
         near.emplace(search::Grid::kInPlace, recs, cell);
         near->order_cells_by_index();  // equal cells in point order: the flood's ties as before
-        std::vector<std::uint32_t> moved(m);
-        for (auto* v : {&index, &lab}) {
-            for (std::uint32_t q = 0; q < m; ++q) {
-                moved[q] = (*v)[near->index_of(q)];
-            }
-            v->swap(moved);
+        std::vector<std::uint32_t> moved(m);  // the cluster ids moved with their records
+        for (std::uint32_t q = 0; q < m; ++q) {
+            moved[q] = index[near->index_of(q)];
         }
+        index.swap(moved);
         near->renumber_by_position();
     }
     std::vector<std::uint32_t> part;  // part within the cluster, 0-based (the flood's result)
@@ -474,7 +480,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n
                     for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
                         const float* q = grid.point(t);
                         const double ox = double{q[0]} - p[0], oy = double{q[1]} - p[1], oz = double{q[2]} - p[2];
-                        if (ox * ox + oy * oy + oz * oz > rb2 || lab[grid.index_of(t)] != lab[k]) {
+                        if (ox * ox + oy * oy + oz * oz > rb2 || lab[t] != lab[k]) {
                             continue;
                         }
                         sx += ox;
@@ -707,7 +713,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
         std::vector<std::uint32_t>().swap(seeds);
-        back_to_point_order(index, n, {&lab, &part}, depth, recs);
+        back_to_point_order(index, n, {&part}, depth, recs);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
             r.splits += cores[c] >= 2;
@@ -742,32 +748,44 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::size_t n
 
 CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
     params.validate();
-    Clustered c = compact(cloud, std::move(labels));
-    // The clustered points' coordinates, copied in point order: the grids sort this copy.
+    const std::size_t n = cloud.size;
+    if (labels.size() != n) {
+        throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
+                              std::to_string(labels.size()));
+    }
+    Clustered c = number_clusters(cloud, labels);
+    // The clustered points as records of their coordinates and cluster, in point order: the
+    // grids sort this copy.
+    constexpr std::size_t kStride = 4 * sizeof(float);
     const std::size_t m = c.index.size();
-    std::vector<float> xyz(3 * m);
+    std::vector<float> copy(4 * m);
+    const LabelWords cluster{reinterpret_cast<std::uint8_t*>(copy.data()), kStride, 3 * sizeof(float)};
     for (std::size_t k = 0; k < m; ++k) {
         const pcl::PointXYZ p = cloud[c.index[k]];
-        xyz[3 * k] = p.x;
-        xyz[3 * k + 1] = p.y;
-        xyz[3 * k + 2] = p.z;
+        copy[4 * k] = p.x;
+        copy[4 * k + 1] = p.y;
+        copy[4 * k + 2] = p.z;
+        cluster.set(k, c.dense[labels[c.index[k]]]);
     }
+    std::vector<std::uint32_t>().swap(labels);
+    std::vector<std::uint32_t>().swap(c.dense);
     CoreSplitResult r;
     std::vector<float> depth;
-    std::vector<std::uint32_t> local =
-        split_clustered({.base = reinterpret_cast<std::uint8_t*>(xyz.data()), .stride = 3 * sizeof(float), .size = m},
-                        cloud.size, c, depth, params, r);
-    std::vector<float>().swap(xyz);
-    return finish(cloud.size, std::move(c), std::move(local), depth, params, std::move(r));
+    std::vector<std::uint32_t> local = split_clustered({.base = cluster.base, .stride = kStride, .size = m}, cluster.offset, n, c,
+                                                       depth, params, r);
+    std::vector<float>().swap(copy);
+    return finish(n, c, std::move(local), std::move(depth), true, params, std::move(r));
 }
 
-CoreSplitResult core_split(const XyzRecords& records, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
+CoreSplitResult core_split(const XyzRecords& records, std::uint32_t label_offset, const CoreSplitParams& params) {
     params.validate();
-    if (!records.aligned()) {
-        throw std::logic_error("core_split: records sorted in place need 4-aligned x y z floats");
+    const bool overlaps = label_offset + 4 > records.offset && label_offset < records.offset + 12;
+    if (!records.aligned() || label_offset % 4 != 0 || label_offset + 4 > records.stride || overlaps) {
+        throw std::logic_error("core_split: records sorted in place need 4-aligned x y z floats and label word");
     }
     const std::size_t n = records.size;
-    Clustered c = compact(records.view(), std::move(labels));
+    const LabelWords label{records.base, records.stride, label_offset};
+    Clustered c = number_clusters(records.view(), label);
     const std::size_t m = c.index.size();
     // The clustered points' records first, in point order (the others after them, in theirs),
     // and every record back in its place at the end. All points clustered: nothing moves.
@@ -780,11 +798,15 @@ CoreSplitResult core_split(const XyzRecords& records, std::vector<std::uint32_t>
         search::permute_records(records, to);
         std::vector<std::uint32_t>().swap(to);
     }
+    for (std::size_t k = 0; k < m; ++k) {
+        label.set(k, c.dense[label[k]]);  // labels become cluster ids (the result replaces them)
+    }
+    std::vector<std::uint32_t>().swap(c.dense);
     CoreSplitResult r;
     std::vector<float> depth;
     XyzRecords clustered = records;
     clustered.size = m;
-    std::vector<std::uint32_t> local = split_clustered(clustered, n, c, depth, params, r);
+    std::vector<std::uint32_t> local = split_clustered(clustered, label_offset, n, c, depth, params, r);
     if (m < n) {
         to.resize(n);
         for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
@@ -797,7 +819,12 @@ CoreSplitResult core_split(const XyzRecords& records, std::vector<std::uint32_t>
         search::permute_records(records, to);
         std::vector<std::uint32_t>().swap(to);
     }
-    return finish(n, std::move(c), std::move(local), depth, params, std::move(r));
+    r = finish(n, c, std::move(local), std::move(depth), false, params, std::move(r));
+    for (std::size_t i = 0; i < n; ++i) {
+        label.set(i, r.labels[i]);
+    }
+    std::vector<std::uint32_t>().swap(r.labels);
+    return r;
 }
 
 }  // namespace pc::segmentation

@@ -103,6 +103,54 @@ TEST(Steps, ThinPointsSortedInPlaceGiveTheSameResultsInTheSameOrder) {
     EXPECT_EQ(k_thin.note, k_rich.note);
 }
 
+TEST(Steps, ThinLabelledPointsAreSplitAndSpacedInPlaceWithTheSameResults) {
+    // The spacing rule for eps and the cores rule sort x y z (+ U 4 label) points where they are
+    // (the cores rule writes its labels in the label words); results, notes and every byte of
+    // the points equal those of the copying path on the richer cloud. Three pairs of touching
+    // lattice balls (spacing 0.01), scattered points between them.
+    std::vector<std::array<double, 3>> p;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<double> anywhere(-1, 1);
+    for (int pair = 0; pair < 3; ++pair) {
+        for (const double dx : {0.0, 0.1}) {
+            const std::array<double, 3> c{0.5 * pair + dx, 0, 0};
+            for (int i = -5; i <= 5; ++i) {
+                for (int j = -5; j <= 5; ++j) {
+                    for (int k = -5; k <= 5; ++k) {
+                        if (i * i + j * j + k * k <= 25) {
+                            p.push_back({c[0] + 0.01 * i + 0.005, c[1] + 0.01 * j + 0.005, c[2] + 0.01 * k + 0.005});
+                        }
+                    }
+                }
+            }
+            p.push_back({anywhere(rng), anywhere(rng), anywhere(rng)});
+        }
+    }
+    const auto xyz = [&](std::size_t i, std::size_t k, std::uint32_t) { return k < 3 ? p[i][k] : static_cast<double>(i); };
+    const io::Blob thin = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}}, p.size(), 1, xyz);
+    const io::Blob rich = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
+                                           {"quality", F::FLOAT64}, {"id", F::UINT32}},
+                                          p.size(), 1, xyz);
+    const EpsRule spacing{.mode = EpsRule::Mode::kSpacing, .factor = 1.5};
+    const Step d_thin = apply_dbscan(thin, {.min_points = 3}, spacing);
+    const Step d_rich = apply_dbscan(rich, {.min_points = 3}, spacing);
+    EXPECT_EQ(io::labels(d_thin.blob), io::labels(d_rich.blob));
+    EXPECT_EQ(d_thin.note, d_rich.note);
+    const segmentation::RecursiveSplitParams cores{.rule = segmentation::SplitRule::kCores, .min_cluster_size = 1};
+    const Step s_thin = apply_recursive_split(d_thin.blob, cores);
+    const Step s_rich = apply_recursive_split(d_rich.blob, cores);
+    ASSERT_EQ(s_thin.blob.cloud.point_step, 16u);
+    for (std::size_t i = 0; i < thin.size(); ++i) {
+        ASSERT_EQ(0, std::memcmp(&s_thin.blob.cloud.data[i * 16], &thin.cloud.data[i * 12], 12)) << "point " << i;
+    }
+    const auto labels = io::labels(s_thin.blob);
+    EXPECT_EQ(labels, io::labels(s_rich.blob));
+    EXPECT_EQ(s_thin.note, s_rich.note);
+    EXPECT_EQ(*std::max_element(labels.begin(), labels.end()), 6u);  // the three pairs cut in two
+    const auto clusters = io::labels(d_thin.blob);
+    EXPECT_EQ(*std::max_element(clusters.begin(), clusters.end()), 3u);
+}
+
 TEST(Steps, EmptyCloudFlowsThroughTheWholeChain) {
     const ChainResult r = run_chain(line_cloud(0), preset("paper-dense"));
     EXPECT_EQ(r.labelled.size(), 0u);

@@ -235,6 +235,10 @@ private:
     bool has_points_ = true;
 };
 
+/// median_spacing() of the records' points from a grid that sorts them in place (in each cell in
+/// index order) and puts them back: no copy of the points. `lent` as for that grid.
+[[nodiscard]] double median_spacing(const XyzRecords& records, Grid::Lent lent = {}, std::size_t samples = 20000);
+
 template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
     for_each_within_if(q, radius, [](std::uint32_t) { return true; }, f);

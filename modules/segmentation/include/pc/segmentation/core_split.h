@@ -64,11 +64,14 @@ struct CoreSplitResult {
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::vector<std::uint32_t>&& labels,
                                          const CoreSplitParams& params);
-/// The same working on the points' own records, which it sorts where they are instead of copying
-/// the coordinates (12 bytes a point: on an x y z cloud, most of its size) and puts back in their
-/// order before it returns (after an exception their order is unspecified). The same result.
+/// The same working on the points' own records, each holding its label in a 4-byte word at byte
+/// `label_offset` (beside x y z): it sorts the records where they are instead of copying the
+/// coordinates and labels (16 bytes a point: on an x y z label cloud, its whole size), puts them
+/// back in their order and writes the result's labels in their label words (result.labels and
+/// result.depth are left empty). The same result otherwise. After an exception the records' order and labels are
+/// unspecified. std::logic_error on unaligned records or a label word overlapping x y z.
 [[nodiscard]] CoreSplitResult core_split(const XyzRecords& records,
-                                         std::vector<std::uint32_t>&& labels,
+                                         std::uint32_t label_offset,
                                          const CoreSplitParams& params);
 [[nodiscard]] inline CoreSplitResult core_split(const Cloud& cloud,
                                                 std::span<const std::uint32_t> labels,

@@ -61,10 +61,12 @@ struct RecursiveSplitResult {
 [[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
                                                    std::vector<std::uint32_t>&& labels,
                                                    const RecursiveSplitParams& params);
-/// The same over the points' own records: the cores rule sorts them where they are and puts
-/// them back (core_split() over records: no copy of the coordinates); the others view them.
+/// The same over the points' own records, each holding its label in a 4-byte word at byte
+/// `label_offset`, where the result's labels are written (result.labels is left empty). The
+/// cores rule sorts the records where they are and puts them back (core_split() over records:
+/// no copy of the points); the other rules read them.
 [[nodiscard]] RecursiveSplitResult recursive_split(const XyzRecords& records,
-                                                   std::vector<std::uint32_t>&& labels,
+                                                   std::uint32_t label_offset,
                                                    const RecursiveSplitParams& params);
 [[nodiscard]] inline RecursiveSplitResult recursive_split(const Cloud& cloud,
                                                           std::span<const std::uint32_t> labels,
