@@ -203,6 +203,9 @@ TOOLS
     tool=${spec%%|*}; args=${spec#*|}
     mem_row "$tool" "$args" "$label, x y z only" "$data/xyz.pcd" "$xbytes"
   done
+  # x y z + label (16 bytes a point): the cores rule sorts such points in place, labels and all.
+  $b/pc_dbscan --preset paper-dense -i "$data/xyz.pcd" -o "$data/xyz_labelled.pcd"
+  mem_row pc_recursive_split "--rule cores" "$label, x y z label" "$data/xyz_labelled.pcd" "$(stat -c %s "$data/xyz_labelled.pcd")"
 
   if [ "$size" = "${sizes[0]}" ]; then
     $b/pc_dbscan --eps 0.015 --min-points 10 -i "$cloud" -o "$data/db.pcd"

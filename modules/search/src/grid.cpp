@@ -982,22 +982,53 @@ void Grid::order_cells_by_index() {
     if (!in_place_ || identity_) {
         throw std::logic_error("Grid::order_cells_by_index: needs a grid that sorted records in place");
     }
+    // Small cells (the usual ones) by insertion, records moved through a buffer; others by
+    // the radix sort of the build (its set-up costs more than a few dozen moves).
+    constexpr std::uint32_t kInsertion = 32;
+    constexpr std::size_t kBuffer = 256;
+    const std::size_t stride = sorted_.stride;
     const auto cells = static_cast<std::int64_t>(cell_count());
 #pragma omp parallel for schedule(dynamic, 1024)
     for (std::int64_t c = 0; c < cells; ++c) {
         const std::uint32_t b = cell_begin(static_cast<std::size_t>(c)), e = cell_end(static_cast<std::size_t>(c));
-        if (e - b > 1 && !std::is_sorted(order_.begin() + b, order_.begin() + e)) {
-            flag_sort<std::uint32_t>(sorted_.base + std::size_t{b} * sorted_.stride, sorted_.stride, order_.data() + b,
-                                     nullptr, e - b);
+        if (e - b < 2 || std::is_sorted(order_.begin() + b, order_.begin() + e)) {
+            continue;
+        }
+        std::uint8_t* rec = sorted_.base;
+        if (e - b > kInsertion || stride > kBuffer) {
+            flag_sort<std::uint32_t>(rec + std::size_t{b} * stride, stride, order_.data() + b, nullptr, e - b);
+            continue;
+        }
+        std::array<std::uint8_t, kBuffer> held{};
+        for (std::uint32_t i = b + 1; i < e; ++i) {
+            const std::uint32_t key = order_[i];
+            std::uint32_t j = i;
+            if (order_[j - 1] <= key) {
+                continue;
+            }
+            std::memcpy(held.data(), rec + std::size_t{i} * stride, stride);
+            for (; j > b && order_[j - 1] > key; --j) {
+                order_[j] = order_[j - 1];
+            }
+            std::memmove(rec + (std::size_t{j} + 1) * stride, rec + std::size_t{j} * stride, std::size_t{i - j} * stride);
+            std::memcpy(rec + std::size_t{j} * stride, held.data(), stride);
+            order_[j] = key;
         }
     }
 }
 
 void permute_records(const XyzRecords& records, std::span<std::uint32_t> to) {
-    if (to.size() != records.size || records.stride % sizeof(float) != 0) {
-        throw std::logic_error("permute_records: one place per record, records of whole words");
+    if (to.size() != records.size) {
+        throw std::logic_error("permute_records: one place per record");
     }
-    flag_sort<std::uint32_t>(records.base, records.stride, to.data(), nullptr, to.size());
+    permute_records(records.base, records.stride, to);
+}
+
+void permute_records(void* base, std::size_t stride, std::span<std::uint32_t> to) {
+    if (stride == 0 || stride % sizeof(std::uint32_t) != 0) {
+        throw std::logic_error("permute_records: records of whole 4-byte words");
+    }
+    flag_sort<std::uint32_t>(static_cast<std::uint8_t*>(base), stride, to.data(), nullptr, to.size());
 }
 
 void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {

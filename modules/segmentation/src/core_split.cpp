@@ -4,12 +4,12 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <initializer_list>
 #include <limits>
 #include <memory>
 #include <numeric>
 #include <optional>
 #include <queue>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -56,65 +56,37 @@ struct LabelWords {
     void set(std::size_t k, std::uint32_t v) const { std::memcpy(base + k * stride + offset, &v, sizeof v); }
 };
 
-/// Puts core_split's per-point arrays (`words`, `depth` and `index`) and the points' records back
+/// Puts core_split's per-point arrays (`part`, `depth` and `index`) and the points' records back
 /// in point order after it worked in cell order. The compacted points' cloud indices (`index`,
 /// below n) rise in point order, so a point's place is the number of indices below its own: a
-/// bit per cloud point and a running count per 64 of them give it without a sort. The arrays are
-/// permuted where they are (views of them stay valid; no second array beside them at the peak).
-void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n,
-                         std::initializer_list<std::vector<std::uint32_t>*> words, std::vector<float>& depth,
-                         const XyzRecords& records) {
+/// bit per cloud point and a running count per 64 of them give it without a sort. Each array
+/// and the records are sorted where they are by those places (permute_records(): cache-aware,
+/// where walking the permutation's cycles waits on memory at every step), the places counted
+/// again before each sort, which consumes them; `index` goes last. No second array beside them.
+void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::vector<std::uint32_t>& part,
+                         std::vector<float>& depth, const XyzRecords& records) {
     const std::size_t m = index.size();
+    std::vector<std::uint64_t> bits(n / 64 + 1, 0);
+    for (const std::uint32_t i : index) {
+        bits[i / 64] |= std::uint64_t{1} << (i % 64);
+    }
+    std::vector<std::uint32_t> below(bits.size(), 0);
+    for (std::size_t w = 1; w < bits.size(); ++w) {
+        below[w] = below[w - 1] + static_cast<std::uint32_t>(std::popcount(bits[w - 1]));
+    }
     std::vector<std::uint32_t> place(m);
-    {
-        std::vector<std::uint64_t> bits(n / 64 + 1, 0);
-        for (const std::uint32_t i : index) {
-            bits[i / 64] |= std::uint64_t{1} << (i % 64);
-        }
-        std::vector<std::uint32_t> below(bits.size(), 0);
-        for (std::size_t w = 1; w < bits.size(); ++w) {
-            below[w] = below[w - 1] + static_cast<std::uint32_t>(std::popcount(bits[w - 1]));
-        }
+    const auto count_places = [&] {
         for (std::size_t k = 0; k < m; ++k) {
             const std::uint32_t i = index[k];
             const std::uint64_t lower = bits[i / 64] & ((std::uint64_t{1} << (i % 64)) - 1);
             place[k] = below[i / 64] + static_cast<std::uint32_t>(std::popcount(lower));
         }
-    }
-    // Each cycle of the permutation is walked once, every array's element in hand going to its
-    // place and taking up the one there; a high bit in `place` marks the places done (m < 2^30).
-    std::vector<std::vector<std::uint32_t>*> arrays(words);
-    arrays.push_back(&index);
-    constexpr std::uint32_t kDone = 0x80000000u;
-    std::vector<std::uint32_t> held(arrays.size());
-    for (std::size_t k = 0; k < m; ++k) {
-        if ((place[k] & kDone) != 0) {
-            continue;
-        }
-        for (std::size_t a = 0; a < arrays.size(); ++a) {
-            held[a] = (*arrays[a])[k];
-        }
-        float held_depth = depth[k];
-        std::uint32_t at = place[k];
-        place[k] |= kDone;
-        while (at != k) {
-            for (std::size_t a = 0; a < arrays.size(); ++a) {
-                std::swap(held[a], (*arrays[a])[at]);
-            }
-            std::swap(held_depth, depth[at]);
-            const std::uint32_t next = place[at];
-            place[at] |= kDone;
-            at = next;
-        }
-        for (std::size_t a = 0; a < arrays.size(); ++a) {
-            (*arrays[a])[k] = held[a];
-        }
-        depth[k] = held_depth;
-    }
-    for (auto& p : place) {
-        p &= ~kDone;
-    }
-    search::permute_records(records, place);
+        return std::span<std::uint32_t>(place);
+    };
+    search::permute_records(part.data(), sizeof(std::uint32_t), count_places());
+    search::permute_records(depth.data(), sizeof(float), count_places());
+    search::permute_records(records, count_places());
+    search::permute_records(index.data(), sizeof(std::uint32_t), count_places());
 }
 
 /// The fruit radius from the curvature of hollow surfaces: least-squares spheres through patches
@@ -713,7 +685,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
         std::vector<std::uint32_t>().swap(seeds);
-        back_to_point_order(index, n, {&part}, depth, recs);
+        back_to_point_order(index, n, part, depth, recs);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
             r.splits += cores[c] >= 2;
@@ -777,6 +749,56 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
     return finish(n, c, std::move(local), std::move(depth), true, params, std::move(r));
 }
 
+namespace {
+
+/// Moves the records of the clustered points (cloud indices `index`, rising) to the front in
+/// point order, the others after them in theirs; `back`: the reverse. Few others are set aside
+/// while the clustered ones close up (one pass, their records' size at most 4 bytes a point);
+/// otherwise permute_records() takes a place for each record.
+void part_clustered(const XyzRecords& records, const std::vector<std::uint32_t>& index, bool back) {
+    const std::size_t n = records.size, m = index.size(), stride = records.stride;
+    std::uint8_t* base = records.base;
+    if (m == n) {
+        return;  // all clustered: the index is 0..n-1
+    }
+    if ((n - m) * stride <= 4 * n) {
+        std::vector<std::uint8_t> aside((n - m) * stride);
+        if (!back) {
+            for (std::size_t i = 0, k = 0, a = 0; i < n; ++i) {
+                if (k < m && index[k] == i) {
+                    if (k != i) {
+                        std::memcpy(base + k * stride, base + i * stride, stride);
+                    }
+                    ++k;
+                } else {
+                    std::memcpy(&aside[a++ * stride], base + i * stride, stride);
+                }
+            }
+            std::memcpy(base + m * stride, aside.data(), aside.size());
+        } else {
+            std::memcpy(aside.data(), base + m * stride, aside.size());
+            for (std::size_t i = n, k = m, a = n - m; i-- > 0;) {  // each record moves up (i >= k)
+                if (k > 0 && index[k - 1] == i) {
+                    if (--k != i) {
+                        std::memcpy(base + i * stride, base + k * stride, stride);
+                    }
+                } else {
+                    std::memcpy(base + i * stride, &aside[--a * stride], stride);
+                }
+            }
+        }
+        return;
+    }
+    std::vector<std::uint32_t> to(n);
+    for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
+        const std::uint32_t at = k < m && index[k] == i ? k++ : rest++;
+        to[back ? at : i] = back ? i : at;
+    }
+    search::permute_records(records, to);
+}
+
+}  // namespace
+
 CoreSplitResult core_split(const XyzRecords& records, std::uint32_t label_offset, const CoreSplitParams& params) {
     params.validate();
     const bool overlaps = label_offset + 4 > records.offset && label_offset < records.offset + 12;
@@ -787,17 +809,7 @@ CoreSplitResult core_split(const XyzRecords& records, std::uint32_t label_offset
     const LabelWords label{records.base, records.stride, label_offset};
     Clustered c = number_clusters(records.view(), label);
     const std::size_t m = c.index.size();
-    // The clustered points' records first, in point order (the others after them, in theirs),
-    // and every record back in its place at the end. All points clustered: nothing moves.
-    std::vector<std::uint32_t> to;
-    if (m < n) {
-        to.resize(n);
-        for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
-            to[i] = k < m && c.index[k] == i ? k++ : rest++;
-        }
-        search::permute_records(records, to);
-        std::vector<std::uint32_t>().swap(to);
-    }
+    part_clustered(records, c.index, false);
     for (std::size_t k = 0; k < m; ++k) {
         label.set(k, c.dense[label[k]]);  // labels become cluster ids (the result replaces them)
     }
@@ -807,18 +819,7 @@ CoreSplitResult core_split(const XyzRecords& records, std::uint32_t label_offset
     XyzRecords clustered = records;
     clustered.size = m;
     std::vector<std::uint32_t> local = split_clustered(clustered, label_offset, n, c, depth, params, r);
-    if (m < n) {
-        to.resize(n);
-        for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
-            if (k < m && c.index[k] == i) {
-                to[k++] = i;
-            } else {
-                to[rest++] = i;
-            }
-        }
-        search::permute_records(records, to);
-        std::vector<std::uint32_t>().swap(to);
-    }
+    part_clustered(records, c.index, true);
     r = finish(n, c, std::move(local), std::move(depth), false, params, std::move(r));
     for (std::size_t i = 0; i < n; ++i) {
         label.set(i, r.labels[i]);

@@ -366,12 +366,13 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
 }
 
 TEST(Grid, InPlaceSortsWholeRecordsAnswersAsTheCopyAndPutsThemBack) {
-    // Records of x y z only, + 2 fields (the sort's fixed sizes), and of an odd size with x
-    // not first (the general path); NaN points go after the finite ones.
+    // Records of x y z only, + 2 fields (the sort's fixed sizes), and of odd sizes with x not
+    // first (the general path; 264 bytes: too large to be moved through a buffer when a cell
+    // is put in index order); NaN points go after the finite ones.
     Cloud c = mixed_density_cloud();
     c.push_back(test::nan_point());
     c.push_back(c[3]);  // a duplicate
-    for (const auto& [stride, offset] : {std::pair<std::size_t, std::uint32_t>{12, 0}, {20, 8}, {44, 16}}) {
+    for (const auto& [stride, offset] : {std::pair<std::size_t, std::uint32_t>{12, 0}, {20, 8}, {44, 16}, {264, 100}}) {
         for (double cell : {0.005, 0.02}) {
             expect_in_place_grid_equals_copy(c, cell, stride, offset);
         }
@@ -435,6 +436,14 @@ TEST(Grid, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
         }
         EXPECT_TRUE(std::is_sorted(places.begin(), places.end()));
     }
+    // An array of 4-byte values, as records of one word.
+    std::vector<std::uint32_t> values(c.size()), places = to;
+    std::iota(values.begin(), values.end(), 0u);
+    permute_records(values.data(), sizeof(std::uint32_t), places);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        ASSERT_EQ(values[to[i]], i);
+    }
+    EXPECT_THROW(permute_records(values.data(), 6, places), std::logic_error);
     std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
     std::vector<std::uint32_t> short_places(c.size() - 1);
     EXPECT_THROW(permute_records(XyzRecords{bytes.data(), 16, c.size(), 0}, short_places), std::logic_error);

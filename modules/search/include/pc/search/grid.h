@@ -30,6 +30,9 @@ class Grid;
 /// Moves record i to place to[i] in place (`to`: a permutation of 0..size-1; it is left
 /// sorted). Records are whole 4-byte words (std::logic_error otherwise, or on a size mismatch).
 void permute_records(const XyzRecords& records, std::span<std::uint32_t> to);
+/// The same for to.size() records of `stride` bytes (a multiple of 4) at `base`: e.g. the
+/// elements of an array of 4-byte values.
+void permute_records(void* base, std::size_t stride, std::span<std::uint32_t> to);
 
 class Grid {
 public:
