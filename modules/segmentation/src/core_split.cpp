@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <numeric>
 #include <optional>
 #include <queue>
@@ -13,7 +12,8 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
-#include <type_traits>
+
+#include <malloc.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -96,33 +96,32 @@ void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::
 /// fewer than 20 patches qualify.
 std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWords& lab,
                                               const std::vector<std::vector<std::uint32_t>>& members, double s) {
-    Cloud surface;
-    std::vector<std::uint32_t> owner;
-    for (std::size_t c = 0; c < members.size(); ++c) {
-        for (auto k : members[c]) {
-            surface.push_back(pts[k]);
-            owner.push_back(lab[k]);
-        }
+    std::vector<std::uint32_t> surface;  // positions in `pts`: a view of them, no copy
+    for (const auto& m : members) {
+        surface.insert(surface.end(), m.begin(), m.end());
     }
     const double reach = 8 * s;
     if (surface.size() < 20 || !(reach > 0)) {
         return {0, 0};
     }
-    const search::Grid grid(surface, reach);
+    const XyzView view = pts.subset(surface);
+    search::Grid grid(view, reach);
+    grid.release_cloud();
     const std::size_t stride = std::max<std::size_t>(1, surface.size() / 2000);
     std::vector<double> radii, density;
     std::vector<std::uint32_t> patch;
     for (std::size_t q = 0; q < surface.size(); q += stride) {
         patch.clear();
-        grid.for_each_within(surface[q], reach, [&](std::uint32_t j, double) {
-            if (owner[j] == owner[q]) {
+        const std::uint32_t owner = lab[surface[q]];
+        grid.for_each_within(view[q], reach, [&](std::uint32_t j, double) {
+            if (lab[surface[j]] == owner) {
                 patch.push_back(j);
             }
         });
         if (patch.size() < 20) {
             continue;
         }
-        const Sphere f = fit_sphere(surface, patch);
+        const Sphere f = fit_sphere(view, patch);
         if (f.ok && f.rms < 0.1 * f.radius && f.radius < 40 * s) {
             radii.push_back(f.radius);
             density.push_back(static_cast<double>(patch.size()) / (3.141592653589793 * reach * reach));
@@ -496,6 +495,9 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
                 }
                 search::permute_records(recs, to);
             };
+            // The heap's free pages go back first: the places would land above the holes the
+            // grids' builds left (pc_recursive_split --rule cores, 1M x y z label: -2 MB peak).
+            (void)malloc_trim(0);
             part_records(false);
             XyzRecords edge = recs;
             edge.size = e;
@@ -685,6 +687,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
         std::vector<std::uint32_t>().swap(seeds);
+        (void)malloc_trim(0);  // as before step 2, for the places
         back_to_point_order(index, n, part, depth, recs);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);

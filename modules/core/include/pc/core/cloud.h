@@ -57,9 +57,6 @@ struct XyzView {
     [[nodiscard]] const std::uint8_t* record(std::size_t i) const {
         return base + (index != nullptr ? index[i] : i) * stride;
     }
-    /// Asks the cache for point i's record ahead of its use: for loops that visit the points in
-    /// an order other than their layout's (a few iterations ahead hides the misses).
-    void prefetch(std::size_t i) const { __builtin_prefetch(record(i)); }
 
     [[nodiscard]] pcl::PointXYZ operator[](std::size_t i) const {
         const std::uint8_t* p = record(i);
