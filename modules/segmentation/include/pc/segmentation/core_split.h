@@ -59,8 +59,8 @@ struct CoreSplitResult {
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::span<const std::uint32_t> labels,
                                          const CoreSplitParams& params);
-/// The same, taking the labels' storage (reused for the working cluster ids: one per-point array
-/// less at the peak).
+/// The same, taking the labels (freed once the clustered points' coordinates and cluster ids are
+/// copied into the 16-byte records the steps sort: one per-point array less at the peak).
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::vector<std::uint32_t>&& labels,
                                          const CoreSplitParams& params);
