@@ -1219,15 +1219,22 @@ void Grid::all_knn(std::size_t k,
     }
 }
 
+namespace {
+
+/// Points per occupied cell of the grid median_spacing() samples by position.
+constexpr double kSpacingOccupancy = 16;
+
+}  // namespace
+
 double median_spacing(const XyzView& cloud, std::size_t samples) {
-    return median_spacing(Grid(cloud, Grid::suggest_cell(cloud, 16)), samples);
+    return median_spacing(Grid(cloud, Grid::suggest_cell(cloud, kSpacingOccupancy)), samples);
 }
 
 double median_spacing(const XyzRecords& records, Grid::Lent lent, std::size_t samples) {
     if (records.size < 2) {
         return 0;
     }
-    Grid grid(Grid::kInPlace, records, Grid::suggest_cell(records.view(), 16), lent);
+    Grid grid(Grid::kInPlace, records, Grid::suggest_cell(records.view(), kSpacingOccupancy), lent);
     grid.order_cells_by_index();
     const double spacing = median_spacing(grid, samples);
     grid.restore_order(records);

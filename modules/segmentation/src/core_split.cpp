@@ -56,6 +56,20 @@ struct LabelWords {
     void set(std::size_t k, std::uint32_t v) const { std::memcpy(base + k * stride + offset, &v, sizeof v); }
 };
 
+/// Parts the records: those `first(i)` holds for (`count` of them) go before the others, each
+/// part keeping its order; `back`: the reverse. One place per record; `first` is asked once per
+/// record, in order.
+template <class First>
+void part_records(const XyzRecords& records, std::size_t count, First&& first, bool back) {
+    std::vector<std::uint32_t> to(records.size);
+    auto a = std::uint32_t{0}, b = static_cast<std::uint32_t>(count);
+    for (std::uint32_t i = 0; i < records.size; ++i) {
+        const std::uint32_t at = first(i) ? a++ : b++;
+        to[back ? at : i] = back ? i : at;
+    }
+    search::permute_records(records, to);
+}
+
 /// Puts core_split's per-point arrays (`part`, `depth` and `index`) and the points' records back
 /// in point order after it worked in cell order. The compacted points' cloud indices (`index`,
 /// below n) rise in point order, so a point's place is the number of indices below its own: a
@@ -486,19 +500,11 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
         //    back to cell order (where the search grid, kept for step 4, finds them).
         const auto e = static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1}));
         if (e > 0 && e < m) {
-            const auto part_records = [&](bool back) {
-                std::vector<std::uint32_t> to(m);
-                auto first = std::uint32_t{0}, second = static_cast<std::uint32_t>(e);
-                for (std::uint32_t k = 0; k < m; ++k) {
-                    const std::uint32_t at = boundary[k] ? first++ : second++;
-                    to[back ? at : k] = back ? k : at;
-                }
-                search::permute_records(recs, to);
-            };
+            const auto on_boundary = [&](std::uint32_t k) { return boundary[k] != 0; };
             // The heap's free pages go back first: the places would land above the holes the
             // grids' builds left (pc_recursive_split --rule cores, 1M x y z label: -2 MB peak).
             (void)malloc_trim(0);
-            part_records(false);
+            part_records(recs, e, on_boundary, false);
             XyzRecords edge = recs;
             edge.size = e;
             search::Grid edges(search::Grid::kInPlace, edge, search::Grid::suggest_cell(edge.view(), 16));
@@ -519,7 +525,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
                 depth[k] = boundary[k] ? 0.0f : depth[--left];
             }
             edges.restore_order(edge);
-            part_records(true);
+            part_records(recs, e, on_boundary, true);
         }
         // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
         //    inside) and the fruit radius: the median over solid clusters of their greatest depth.
@@ -757,7 +763,7 @@ namespace {
 /// Moves the records of the clustered points (cloud indices `index`, rising) to the front in
 /// point order, the others after them in theirs; `back`: the reverse. Few others are set aside
 /// while the clustered ones close up (one pass, their records' size at most 4 bytes a point);
-/// otherwise permute_records() takes a place for each record.
+/// otherwise part_records() takes a place for each record.
 void part_clustered(const XyzRecords& records, const std::vector<std::uint32_t>& index, bool back) {
     const std::size_t n = records.size, m = index.size(), stride = records.stride;
     std::uint8_t* base = records.base;
@@ -792,12 +798,13 @@ void part_clustered(const XyzRecords& records, const std::vector<std::uint32_t>&
         }
         return;
     }
-    std::vector<std::uint32_t> to(n);
-    for (std::uint32_t i = 0, k = 0, rest = static_cast<std::uint32_t>(m); i < n; ++i) {
-        const std::uint32_t at = k < m && index[k] == i ? k++ : rest++;
-        to[back ? at : i] = back ? i : at;
-    }
-    search::permute_records(records, to);
+    std::size_t k = 0;  // the next clustered point's entry in `index` (records are asked in order)
+    const auto clustered = [&](std::uint32_t i) {
+        const bool hit = k < m && index[k] == i;
+        k += hit ? 1 : 0;
+        return hit;
+    };
+    part_records(records, m, clustered, back);
 }
 
 }  // namespace
