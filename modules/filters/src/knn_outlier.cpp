@@ -29,20 +29,11 @@ namespace {
 /// bench canopy, balls, implicit peach, explicit plum): 8 to 24 equally fast and 4 about 25 %
 /// slower; with k = 30 12 to 60 equally fast. Larger cells also mean fewer cells to hold: 16.
 constexpr double kOccupancy = 16.0;
-}  // namespace
 
-double cell_for_knn(const XyzView& points) {
-    return search::Grid::suggest_cell(points, kOccupancy);
-}
-
+/// Each of the grid's n points' mean distance to its k nearest other points (+inf when
+/// non-finite or alone).
 std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k) {
-    std::vector<double> mean(n);
-    knn_mean_distance(grid, k, mean);
-    return mean;
-}
-
-void knn_mean_distance(const search::Grid& grid, std::uint32_t k, std::span<double> mean) {
-    std::uninitialized_fill(mean.begin(), mean.end(), std::numeric_limits<double>::infinity());
+    std::vector<double> mean(n, std::numeric_limits<double>::infinity());
     grid.all_knn(k, [&](std::uint32_t i, const std::vector<std::uint32_t>&, const std::vector<double>& d2) {
         if (d2.empty()) {
             return;
@@ -53,10 +44,11 @@ void knn_mean_distance(const search::Grid& grid, std::uint32_t k, std::span<doub
         }
         mean[i] = sum / static_cast<double>(d2.size());
     });
+    return mean;
 }
 
-KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlierParams& params) {
-    params.validate();
+/// The threshold and flags from the scores.
+KnnOutlierResult flag_outliers(std::vector<double> mean_distance, const KnnOutlierParams& params) {
     const std::size_t n = mean_distance.size();
     KnnOutlierResult r;
     r.mean_distance = std::move(mean_distance);
@@ -95,14 +87,16 @@ KnnOutlierResult knn_outlier(std::vector<double> mean_distance, const KnnOutlier
     return r;
 }
 
-KnnOutlierResult knn_outlier(const XyzView& points, const KnnOutlierParams& params) {
+}  // namespace
+
+KnnOutlierResult knn_outlier(XyzRecords& points, const KnnOutlierParams& params) {
     params.validate();
     std::vector<double> mean;
-    {  // the grid is freed before the flags are allocated: peak memory
-        const search::Grid grid(points, cell_for_knn(points));
-        mean = knn_mean_distance(grid, points.size, params.k);
+    {  // the grid (and the records' order) is released before the flags are allocated
+        const auto grid = search::grid_over(points, search::Grid::suggest_cell(points.view(), kOccupancy));
+        mean = knn_mean_distance(*grid, points.size, params.k);
     }
-    return knn_outlier(std::move(mean), params);
+    return flag_outliers(std::move(mean), params);
 }
 
 }  // namespace pc::filters

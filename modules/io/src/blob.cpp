@@ -5,7 +5,6 @@
 #include <cstring>
 #include <memory>
 
-#include <malloc.h>
 
 #include <pc/core/error.h>
 
@@ -114,21 +113,6 @@ void reserve_points(Blob& blob, std::size_t points) {
     blob.cloud.data.reserve(points * (std::size_t{blob.cloud.point_step} + 4));
 }
 
-SpareWords::SpareWords(Blob& blob) : blob_(blob), bytes_(blob.cloud.data.size()) {
-    auto& data = blob.cloud.data;
-    const std::size_t n = blob.size();
-    const std::size_t at = (bytes_ + 3) & ~std::size_t{3};  // the words' own alignment
-    if (n == 0 || at + 4 * n > data.capacity()) {
-        return;
-    }
-    data.resize(at + 4 * n);  // within the capacity: the points do not move
-    auto* words = reinterpret_cast<std::uint32_t*>(data.data() + at);
-    std::uninitialized_default_construct_n(words, n);  // words now live in those bytes
-    words_ = std::span<std::uint32_t>(words, n);
-}
-
-SpareWords::~SpareWords() { blob_.cloud.data.resize(bytes_); }
-
 namespace {
 
 /// The first `kept` points become the cloud (unorganised: height 1).
@@ -204,10 +188,7 @@ void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_
     f.datatype = Field::UINT32;
     f.count = 1;
     cloud.fields.push_back(f);
-    // The points grow into room never touched (the readers' reservation): the heap's free pages
-    // are handed back first, so that the growth does not stack on memory the step before freed
-    // but kept (the tools never trim otherwise). pc_dbscan on 1M x y z points: 2-4 MB less peak.
-    (void)malloc_trim(0);
+    // The points grow into the room the readers reserved (reserve_points): no second copy.
     cloud.data.resize(n * new_step);
     // Back to front: each row moves to a higher offset, past every row not yet moved.
     std::uint8_t* data = cloud.data.data();

@@ -79,25 +79,21 @@ XyzPoints::XyzPoints(const Blob& blob) {
     }
 }
 
-std::optional<XyzRecords> xyz_records(Blob& blob) {
+XyzSortable::XyzSortable(Blob& blob) {
     const Field* axes[3] = {find_field(blob, "x"), find_field(blob, "y"), find_field(blob, "z")};
+    bool consecutive = true;
     for (int a = 0; a < 3; ++a) {
-        if (axes[a] == nullptr || axes[a]->datatype != Field::FLOAT32 || axes[a]->count != 1 ||
-            axes[a]->offset != axes[0]->offset + 4 * static_cast<std::uint32_t>(a)) {
-            return std::nullopt;
+        consecutive = consecutive && axes[a] != nullptr && axes[a]->datatype == Field::FLOAT32 &&
+                      axes[a]->count == 1 && axes[a]->offset == axes[0]->offset + 4 * static_cast<std::uint32_t>(a);
+    }
+    if (consecutive) {
+        records_ = XyzRecords(blob.cloud.data.data(), blob.cloud.point_step, blob.size(), axes[0]->offset);
+        if (records_.aligned()) {
+            return;
         }
     }
-    XyzRecords r;
-    r.base = blob.cloud.data.data();
-    r.stride = blob.cloud.point_step;
-    r.size = blob.size();
-    r.offset = axes[0]->offset;
-    return r.aligned() ? std::optional<XyzRecords>(r) : std::nullopt;
-}
-
-void XyzPoints::release() {
-    view_ = XyzView();
-    Cloud().swap(copy_);
+    copy_ = xyz(blob);
+    records_ = XyzRecords(copy_);
 }
 
 std::vector<Rgb> colours(const Blob& blob) {

@@ -19,20 +19,6 @@ std::string kept_note(const char* step, std::size_t kept, std::size_t total) {
            " points";
 }
 
-/// The blob's points for a grid that sorts them in place instead of copying x y z out: when
-/// that copy (12 bytes a point) would be three quarters of the cloud or more, it takes DBSCAN
-/// and kNN over 3x the cloud (pc_dbscan on 1M points with the copy: 4.2x at 12 bytes a point,
-/// 3.4x at 16, 2.9x at 20). Sorting the points and putting them back costs more time than the
-/// copy (pc_dbscan 1M: about 20 ms more in 150), so richer points keep the copy.
-std::optional<XyzRecords> records_to_sort(io::Blob& blob) {
-    constexpr std::size_t kCopyDominates = 16;  // bytes a point, x y z's 12 included
-    auto records = io::xyz_records(blob);
-    if (records && records->stride > kCopyDominates) {
-        return std::nullopt;
-    }
-    return records;
-}
-
 }  // namespace
 
 Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
@@ -59,26 +45,7 @@ Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
 }
 
 Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
-    const filters::KnnOutlierResult r = [&] {
-        const auto records = records_to_sort(in);
-        if (!records) {
-            return filters::knn_outlier(io::XyzPoints(in).view(), p);
-        }
-        // The grid sorts the points where they are (no copy of them), and puts them back before
-        // the flags are allocated. Its build sorts the cell keys in the scores' storage, and
-        // its order lives in the blob's spare room: no block of its own per point.
-        p.validate();
-        std::vector<double> mean(in.size());
-        {
-            io::SpareWords spare(in);
-            search::Grid grid(search::Grid::kInPlace, *records, filters::cell_for_knn(records->view()),
-                              {.order = spare.words(),
-                               .keys = {reinterpret_cast<std::uint64_t*>(mean.data()), mean.size()}});
-            filters::knn_mean_distance(grid, p.k, mean);
-            grid.restore_order(*records);
-        }
-        return filters::knn_outlier(std::move(mean), p);
-    }();
+    const filters::KnnOutlierResult r = filters::knn_outlier(io::XyzSortable(in).records(), p);
     std::size_t outliers = 0;
     for (auto f : r.outlier) {
         outliers += f;
@@ -97,42 +64,17 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
 
 Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps) {
     std::string note;
-    // Thin points (records_to_sort): the grid sorts them where they are and puts them back
-    // after clustering. Others: the grid reads x y z from the blob and keeps its own sorted copy,
-    // and a converted copy (F 8 coordinates) is freed before clustering. Peak memory.
-    const segmentation::DbscanResult r = [&] {
-        io::XyzPoints points(in);
-        if (eps.mode == EpsRule::Mode::kKnee) {
-            p.eps = segmentation::estimate_eps(points.view(), p.min_points);
-            note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
-        } else if (eps.mode == EpsRule::Mode::kSpacing) {
-            const double s = [&] {
-                if (const auto records = records_to_sort(in)) {  // sorted in place, not copied
-                    io::SpareWords spare(in);  // the grid's order, in room the labels fill later
-                    return search::median_spacing(*records, {.order = spare.words()});
-                }
-                return search::median_spacing(points.view());
-            }();
-            // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
-            p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
-            note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
-                   format_number(p.eps) + "; ";
-        }
-        p.validate();
-        if (const auto records = records_to_sort(in)) {
-            points.release();
-            io::SpareWords spare(in);  // the grid's order, in room the labels fill later
-            search::Grid grid(search::Grid::kInPlace, *records, p.eps, {.order = spare.words()});
-            segmentation::DbscanResult result = segmentation::dbscan(std::move(grid), in.size(), p);
-            // dbscan(Grid&&) freed all but the grid's order, which restore_order() needs.
-            grid.restore_order(*records);  // NOLINT(bugprone-use-after-move)
-            return result;
-        }
-        search::Grid grid(points.view(), p.eps);
-        grid.release_cloud();
-        points.release();
-        return segmentation::dbscan(std::move(grid), in.size(), p);
-    }();
+    if (eps.mode == EpsRule::Mode::kKnee) {
+        p.eps = segmentation::estimate_eps(io::XyzPoints(in).view(), p.min_points);
+        note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
+    } else if (eps.mode == EpsRule::Mode::kSpacing) {
+        const double s = search::median_spacing(io::XyzPoints(in).view());
+        // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
+        p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
+        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
+               format_number(p.eps) + "; ";
+    }
+    const segmentation::DbscanResult r = segmentation::dbscan(io::XyzSortable(in).records(), p);
     std::size_t noise = 0;
     for (auto l : r.labels) {
         noise += l == segmentation::kNoise;
@@ -145,20 +87,9 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
 }
 
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
-    // Thin points (records_to_sort) with U 4 labels: the labels are read and written where they
-    // are, and the cores rule sorts the records in place and puts them back. Others: the labels'
-    // copy is handed over (the cores rule reuses its storage).
-    const segmentation::RecursiveSplitResult r = [&] {
-        const auto* label = io::find_field(in, "label");
-        const auto records = records_to_sort(in);
-        if (records && label != nullptr && label->datatype == pcl::PCLPointField::UINT32 && label->count == 1) {
-            return segmentation::recursive_split(*records, label->offset, p);
-        }
-        segmentation::RecursiveSplitResult split =
-            segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
-        io::set_field(in, "label", split.labels);
-        return split;
-    }();
+    segmentation::RecursiveSplitResult r =
+        segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
+    io::set_field(in, "label", r.labels);
     const std::string how = p.rule == segmentation::SplitRule::kCores
                                 ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
                                       ", estimated fruit radius " + format_number(r.fruit_radius) +

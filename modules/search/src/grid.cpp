@@ -508,8 +508,7 @@ void Grid::index_sorted(const Key* sorted, std::size_t n) {
 
 Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
     const std::size_t n = set_frame(cloud, cell);
-    own_order_.resize(n);
-    order_ = own_order_;
+    order_.resize(n);
     // 1. Cell keys, sorted with the points' order. 32-bit keys: keys and sort scratch (3 x 4
     //    bytes per point) live in xyz_'s storage (3 floats per point), allocated once here: the
     //    grid's build needs no block beside its own arrays. 64-bit keys: their own scratch.
@@ -564,8 +563,7 @@ Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
     xyz_at_ = xyz_.data();
 }
 
-Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell, Lent lent)
-    : sorted_(records), in_place_(true), has_points_(false) {
+Grid::Grid(XyzRecords& records, double cell) : sorted_(records), in_place_(true), has_points_(false) {
     if (!records.aligned()) {
         throw std::logic_error("grid: records sorted in place need 4-aligned x y z floats");
     }
@@ -575,28 +573,12 @@ Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell, Lent lent
     const XyzView view = records.view();
     set_frame(view, cell);
     const std::size_t n = records.size;
-    if (lent.order.size() >= n) {
-        order_ = lent.order.first(n);
-    } else {
-        own_order_.resize(n);
-        order_ = own_order_;
-    }
+    order_.resize(n);
     // Keys with one bit above the cell key's: set for non-finite points, which sort last.
     const int key_bits = bits_[0] + bits_[1] + bits_[2];
     const auto sort_records = [&](auto key_type) {
         using Key = decltype(key_type);
-        std::vector<Key> own;
-        std::span<Key> keys;
-        if (lent.keys.size() >= n) {  // 8 bytes a record: room for either key width
-            // The lent memory holds the caller's objects (e.g. doubles it writes later): the
-            // keys are created over them (no code; it ends their lifetime, as the standard asks).
-            Key* at = reinterpret_cast<Key*>(lent.keys.data());
-            std::uninitialized_default_construct_n(at, n);
-            keys = std::span<Key>(at, n);
-        } else {
-            own.resize(n);
-            keys = own;
-        }
+        std::vector<Key> keys(n);
         const auto count = static_cast<std::int64_t>(n);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < count; ++i) {
@@ -616,17 +598,11 @@ Grid::Grid(InPlace /*unused*/, const XyzRecords& records, double cell, Lent lent
     stride_ = records.stride / sizeof(float);
 }
 
-void Grid::restore_order(const XyzRecords& records) {
-    if (!in_place_ || identity_ || records.base != sorted_.base || records.size != sorted_.size ||
-        records.stride != sorted_.stride) {
-        throw std::logic_error("grid: restore_order() of records the grid did not sort");
+Grid::~Grid() {
+    if (in_place_ && !identity_) {
+        // Back to the original order: each record's original index is its sort key.
+        flag_sort<std::uint32_t>(sorted_.base, sorted_.stride, order_.data(), nullptr, order_.size());
     }
-    release_all_but_order();
-    flag_sort<std::uint32_t>(records.base, records.stride, order_.data(), nullptr, order_.size());
-    order_ = {};
-    std::vector<std::uint32_t>().swap(own_order_);
-    finite_ = 0;
-    in_place_ = false;
 }
 
 std::int64_t Grid::coord(float v, int axis) const {
@@ -749,7 +725,7 @@ void Grid::knn(std::uint32_t self,
                std::vector<std::uint32_t>& idx,
                std::vector<double>& d2) const {
     if (!has_points_) {
-        throw std::logic_error("grid: knn(i) after release_cloud()");
+        throw std::logic_error("grid: knn(i) needs a grid that copied the points and was not renumbered");
     }
     search(points_[self], self, k, idx, d2);
 }
@@ -956,24 +932,11 @@ void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
     }
 }
 
-void Grid::release_all_but_order() {
-    has_points_ = false;
-    std::vector<float>().swap(xyz_);
-    xyz_at_ = nullptr;
-    std::vector<Cell>().swap(cells_);
-    std::vector<std::uint32_t>().swap(row_begin_);
-    std::vector<std::uint64_t>().swap(row_key_);
-    std::vector<std::uint32_t>().swap(row_table_);
-    std::vector<Node>().swap(nodes_);
-    std::vector<std::uint32_t>().swap(tree_perm_);
-}
-
 void Grid::renumber_by_position() {
     if (finite_ != (in_place_ ? sorted_.size : points_.size)) {
         throw std::logic_error("Grid::renumber_by_position: needs a grid over finite points only");
     }
-    order_ = {};
-    std::vector<std::uint32_t>().swap(own_order_);
+    std::vector<std::uint32_t>().swap(order_);
     identity_ = true;
     has_points_ = false;
 }
@@ -1017,7 +980,7 @@ void Grid::order_cells_by_index() {
     }
 }
 
-void permute_records(const XyzRecords& records, std::span<std::uint32_t> to) {
+void permute_records(XyzRecords& records, std::span<std::uint32_t> to) {
     if (to.size() != records.size) {
         throw std::logic_error("permute_records: one place per record");
     }
@@ -1029,6 +992,14 @@ void permute_records(void* base, std::size_t stride, std::span<std::uint32_t> to
         throw std::logic_error("permute_records: records of whole 4-byte words");
     }
     flag_sort<std::uint32_t>(static_cast<std::uint8_t*>(base), stride, to.data(), nullptr, to.size());
+}
+
+std::unique_ptr<Grid> grid_over(XyzRecords& records, double cell) {
+    constexpr std::size_t kThin = 16;  // bytes a record, x y z's 12 included
+    if (records.stride <= kThin && records.aligned()) {
+        return std::make_unique<Grid>(records, cell);
+    }
+    return std::make_unique<Grid>(records.view(), cell);
 }
 
 void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const {
@@ -1228,17 +1199,6 @@ constexpr double kSpacingOccupancy = 16;
 
 double median_spacing(const XyzView& cloud, std::size_t samples) {
     return median_spacing(Grid(cloud, Grid::suggest_cell(cloud, kSpacingOccupancy)), samples);
-}
-
-double median_spacing(const XyzRecords& records, Grid::Lent lent, std::size_t samples) {
-    if (records.size < 2) {
-        return 0;
-    }
-    Grid grid(Grid::kInPlace, records, Grid::suggest_cell(records.view(), kSpacingOccupancy), lent);
-    grid.order_cells_by_index();
-    const double spacing = median_spacing(grid, samples);
-    grid.restore_order(records);
-    return spacing;
 }
 
 double median_spacing(const Grid& grid, std::size_t samples) {

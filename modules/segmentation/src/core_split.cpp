@@ -13,7 +13,6 @@
 #include <string>
 #include <tuple>
 
-#include <malloc.h>
 
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
@@ -60,7 +59,7 @@ struct LabelWords {
 /// part keeping its order; `back`: the reverse. One place per record; `first` is asked once per
 /// record, in order.
 template <class First>
-void part_records(const XyzRecords& records, std::size_t count, First&& first, bool back) {
+void part_records(XyzRecords& records, std::size_t count, First&& first, bool back) {
     std::vector<std::uint32_t> to(records.size);
     auto a = std::uint32_t{0}, b = static_cast<std::uint32_t>(count);
     for (std::uint32_t i = 0; i < records.size; ++i) {
@@ -78,7 +77,7 @@ void part_records(const XyzRecords& records, std::size_t count, First&& first, b
 /// where walking the permutation's cycles waits on memory at every step), the places counted
 /// again before each sort, which consumes them; `index` goes last. No second array beside them.
 void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::vector<std::uint32_t>& part,
-                         std::vector<float>& depth, const XyzRecords& records) {
+                         std::vector<float>& depth, XyzRecords& records) {
     const std::size_t m = index.size();
     std::vector<std::uint64_t> bits(n / 64 + 1, 0);
     for (const std::uint32_t i : index) {
@@ -119,8 +118,7 @@ std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWor
         return {0, 0};
     }
     const XyzView view = pts.subset(surface);
-    search::Grid grid(view, reach);
-    grid.release_cloud();
+    const search::Grid grid(view, reach);
     const std::size_t stride = std::max<std::size_t>(1, surface.size() / 2000);
     std::vector<double> radii, density;
     std::vector<std::uint32_t> patch;
@@ -330,9 +328,6 @@ void CoreSplitParams::validate() const {
     }
 }
 
-CoreSplitResult core_split(const XyzView& cloud, std::span<const std::uint32_t> labels, const CoreSplitParams& params) {
-    return core_split(cloud, std::vector<std::uint32_t>(labels.begin(), labels.end()), params);
-}
 
 namespace {
 
@@ -415,7 +410,7 @@ CoreSplitResult finish(std::size_t n, const Clustered& c, std::vector<std::uint3
 /// sorted in cell order while it works, back in point order when it returns), each holding its
 /// cluster (0..clusters-1) in the word at `label_offset`: each clustered point's label (1..,
 /// before the size limits), its depth (`depth`) and the rest of `r`.
-std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t label_offset, std::size_t n,
+std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label_offset, std::size_t n,
                                            Clustered& points, std::vector<float>& depth, const CoreSplitParams& params,
                                            CoreSplitResult& r) {
     std::vector<std::uint32_t>& index = points.index;
@@ -423,7 +418,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
     const std::uint32_t clusters = points.clusters;
     const std::size_t m = index.size();
     const XyzView pts = recs.view();
-    r.spacing = search::median_spacing(recs);
+    r.spacing = search::median_spacing(pts);
     const double s = r.spacing, rb = params.boundary_radius * s, link = params.link * s;
     const double cell = std::max(rb, link);
     // The points are renumbered in the search grid's cell order, so that the points a search
@@ -435,7 +430,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
     // the records return to it after step 5.
     std::optional<search::Grid> near;
     if (r.spacing > 0) {
-        near.emplace(search::Grid::kInPlace, recs, cell);
+        near.emplace(recs, cell);
         near->order_cells_by_index();  // equal cells in point order: the flood's ties as before
         std::vector<std::uint32_t> moved(m);  // the cluster ids moved with their records
         for (std::uint32_t q = 0; q < m; ++q) {
@@ -501,22 +496,21 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
         const auto e = static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1}));
         if (e > 0 && e < m) {
             const auto on_boundary = [&](std::uint32_t k) { return boundary[k] != 0; };
-            // The heap's free pages go back first: the places would land above the holes the
-            // grids' builds left (pc_recursive_split --rule cores, 1M x y z label: -2 MB peak).
-            (void)malloc_trim(0);
             part_records(recs, e, on_boundary, false);
             XyzRecords edge = recs;
             edge.size = e;
-            search::Grid edges(search::Grid::kInPlace, edge, search::Grid::suggest_cell(edge.view(), 16));
-            // The j-th interior point (record e + j) gets its depth in depth[j] first.
+            {  // the boundary records back in their order when the grid goes
+                const search::Grid edges(edge, search::Grid::suggest_cell(edge.view(), 16));
+                // The j-th interior point (record e + j) gets its depth in depth[j] first.
 #pragma omp parallel
-            {
-                std::vector<std::uint32_t> idx;
-                std::vector<double> d2;
+                {
+                    std::vector<std::uint32_t> idx;
+                    std::vector<double> d2;
 #pragma omp for schedule(dynamic, 4096)
-                for (std::int64_t j = 0; j < static_cast<std::int64_t>(m - e); ++j) {
-                    edges.knn_point(pts[e + static_cast<std::size_t>(j)], 1, idx, d2);
-                    depth[static_cast<std::size_t>(j)] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
+                    for (std::int64_t j = 0; j < static_cast<std::int64_t>(m - e); ++j) {
+                        edges.knn_point(pts[e + static_cast<std::size_t>(j)], 1, idx, d2);
+                        depth[static_cast<std::size_t>(j)] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
+                    }
                 }
             }
             // Spread to each point's own entry, from the last: entry j is read before any entry
@@ -524,7 +518,6 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
             for (std::size_t k = m, left = m - e; k-- > 0;) {
                 depth[k] = boundary[k] ? 0.0f : depth[--left];
             }
-            edges.restore_order(edge);
             part_records(recs, e, on_boundary, true);
         }
         // 3. Hollow clusters (under 5 % interior points: surfaces, where only contact zones look
@@ -693,7 +686,6 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
         }
         std::vector<std::pair<std::uint32_t, std::uint32_t>>().swap(unreached);
         std::vector<std::uint32_t>().swap(seeds);
-        (void)malloc_trim(0);  // as before step 2, for the places
         back_to_point_order(index, n, part, depth, recs);
         for (std::uint32_t c = 0; c < clusters; ++c) {
             parts[c] = std::max(1u, cores[c]);
@@ -727,7 +719,7 @@ std::vector<std::uint32_t> split_clustered(const XyzRecords& recs, std::uint32_t
 
 }  // namespace
 
-CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels, const CoreSplitParams& params) {
+CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t> labels, const CoreSplitParams& params) {
     params.validate();
     const std::size_t n = cloud.size;
     if (labels.size() != n) {
@@ -748,94 +740,14 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t>&& la
         copy[4 * k + 2] = p.z;
         cluster.set(k, c.dense[labels[c.index[k]]]);
     }
-    std::vector<std::uint32_t>().swap(labels);
+    std::vector<std::uint32_t>().swap(labels);  // copied into the records: freed before the steps
     std::vector<std::uint32_t>().swap(c.dense);
     CoreSplitResult r;
     std::vector<float> depth;
-    std::vector<std::uint32_t> local = split_clustered({.base = cluster.base, .stride = kStride, .size = m}, cluster.offset, n, c,
-                                                       depth, params, r);
+    XyzRecords records(cluster.base, kStride, m, 0);
+    std::vector<std::uint32_t> local = split_clustered(records, cluster.offset, n, c, depth, params, r);
     std::vector<float>().swap(copy);
     return finish(n, c, std::move(local), std::move(depth), true, params, std::move(r));
-}
-
-namespace {
-
-/// Moves the records of the clustered points (cloud indices `index`, rising) to the front in
-/// point order, the others after them in theirs; `back`: the reverse. Few others are set aside
-/// while the clustered ones close up (one pass, their records' size at most 4 bytes a point);
-/// otherwise part_records() takes a place for each record.
-void part_clustered(const XyzRecords& records, const std::vector<std::uint32_t>& index, bool back) {
-    const std::size_t n = records.size, m = index.size(), stride = records.stride;
-    std::uint8_t* base = records.base;
-    if (m == n) {
-        return;  // all clustered: the index is 0..n-1
-    }
-    if ((n - m) * stride <= 4 * n) {
-        std::vector<std::uint8_t> aside((n - m) * stride);
-        if (!back) {
-            for (std::size_t i = 0, k = 0, a = 0; i < n; ++i) {
-                if (k < m && index[k] == i) {
-                    if (k != i) {
-                        std::memcpy(base + k * stride, base + i * stride, stride);
-                    }
-                    ++k;
-                } else {
-                    std::memcpy(&aside[a++ * stride], base + i * stride, stride);
-                }
-            }
-            std::memcpy(base + m * stride, aside.data(), aside.size());
-        } else {
-            std::memcpy(aside.data(), base + m * stride, aside.size());
-            for (std::size_t i = n, k = m, a = n - m; i-- > 0;) {  // each record moves up (i >= k)
-                if (k > 0 && index[k - 1] == i) {
-                    if (--k != i) {
-                        std::memcpy(base + i * stride, base + k * stride, stride);
-                    }
-                } else {
-                    std::memcpy(base + i * stride, &aside[--a * stride], stride);
-                }
-            }
-        }
-        return;
-    }
-    std::size_t k = 0;  // the next clustered point's entry in `index` (records are asked in order)
-    const auto clustered = [&](std::uint32_t i) {
-        const bool hit = k < m && index[k] == i;
-        k += hit ? 1 : 0;
-        return hit;
-    };
-    part_records(records, m, clustered, back);
-}
-
-}  // namespace
-
-CoreSplitResult core_split(const XyzRecords& records, std::uint32_t label_offset, const CoreSplitParams& params) {
-    params.validate();
-    const bool overlaps = label_offset + 4 > records.offset && label_offset < records.offset + 12;
-    if (!records.aligned() || label_offset % 4 != 0 || label_offset + 4 > records.stride || overlaps) {
-        throw std::logic_error("core_split: records sorted in place need 4-aligned x y z floats and label word");
-    }
-    const std::size_t n = records.size;
-    const LabelWords label{records.base, records.stride, label_offset};
-    Clustered c = number_clusters(records.view(), label);
-    const std::size_t m = c.index.size();
-    part_clustered(records, c.index, false);
-    for (std::size_t k = 0; k < m; ++k) {
-        label.set(k, c.dense[label[k]]);  // labels become cluster ids (the result replaces them)
-    }
-    std::vector<std::uint32_t>().swap(c.dense);
-    CoreSplitResult r;
-    std::vector<float> depth;
-    XyzRecords clustered = records;
-    clustered.size = m;
-    std::vector<std::uint32_t> local = split_clustered(clustered, label_offset, n, c, depth, params, r);
-    part_clustered(records, c.index, true);
-    r = finish(n, c, std::move(local), std::move(depth), false, params, std::move(r));
-    for (std::size_t i = 0; i < n; ++i) {
-        label.set(i, r.labels[i]);
-    }
-    std::vector<std::uint32_t>().swap(r.labels);
-    return r;
 }
 
 }  // namespace pc::segmentation

@@ -14,9 +14,6 @@ namespace pc::segmentation {
 namespace {
 
 constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
-/// Marks a cluster root's forest entry once it holds the cluster's compact id (step 4): sorted
-/// positions must stay below it.
-constexpr std::uint32_t kTag = 0x80000000u;
 
 /// Lock-free union-find (links the larger root under the smaller with CAS, path halving).
 struct ConcurrentForest {
@@ -145,35 +142,21 @@ void DbscanParams::validate() const {
     }
 }
 
-DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params) {
-    params.validate();
-    search::Grid grid(cloud, params.eps);
-    return dbscan(std::move(grid), cloud.size(), params);
-}
-
 namespace {
 
-/// dbscan() over `grid`; `owned`, when given, is the same grid handed over by the caller: its
-/// coordinates and cells are freed before the result is allocated.
-DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& params, search::Grid* owned) {
-    params.validate();
-    if (!(grid.cell() >= params.eps)) {
-        throw InvalidArgument("dbscan: the grid's cells (" + format_number(grid.cell()) +
-                              ") must be at least eps (" + format_number(params.eps) + ")");
-    }
+/// dbscan() over `grid` (cells of at least eps) on the cloud's n points.
+DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& params) {
     DbscanResult r;
     const double eps2 = params.eps * params.eps;
     const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
-    if (m >= kTag) {
-        throw InvalidArgument("dbscan: at most 2^31 - 1 finite points, got " + std::to_string(m));
+    if (m >= kNone) {
+        throw InvalidArgument("dbscan: at most 2^32 - 2 finite points, got " + std::to_string(m));
     }
 
     // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
     //    once there are enough; the own cell first, where most neighbours are). Then the core
     //    points of each cell are joined among themselves (a cell-local union-find, written to the
     //    forest: nobody else reads these entries in this pass) and numbered by local component.
-    // The forest first: it takes the block the grid's build sorted its keys in (the same size,
-    // free again), which a smaller block allocated before it would split (3 MB more peak at 1M).
     ConcurrentForest forest(m);
     // Per sorted position: 0 for a point that is not core, 1 + its local component (the
     // component among the core points of its cell, below) for a core point. One byte for both.
@@ -283,61 +266,42 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                core.begin() + grid.cell_end(c);
     });
 
-    // A handed-over grid's coordinates and cells are done with: freed before the result is
-    // allocated.
-    if (owned != nullptr) {
-        owned->release_all_but_order();
-    }
-
-    // 4. Number clusters by decreasing size, ties by smallest original member index. Components
-    //    get compact ids first, written into their roots' own entries with a tag bit (no entry
-    //    names a root's entry as its parent any more): no per-point table beyond the forest.
-    std::vector<std::uint32_t> size, first;
-    const auto id_of_root = [&](std::uint32_t root) {
-        std::uint32_t v = parent[root].load(std::memory_order_relaxed);
-        if ((v & kTag) == 0) {  // the cluster's first member seen: number it
-            v = kTag | static_cast<std::uint32_t>(size.size());
-            parent[root].store(v, std::memory_order_relaxed);
-            size.push_back(0);
-            first.push_back(kNone);
-        }
-        return v & ~kTag;
-    };
-    // The compact id of sorted position s, or kNone for noise.
-    const auto cluster_of = [&](std::uint32_t s) {
-        const std::uint32_t p = parent[s].load(std::memory_order_relaxed);
-        if ((p & kTag) != 0) {
-            return p & ~kTag;  // a numbered root
-        }
-        if (p == s) {
-            return core[s] ? id_of_root(s) : kNone;  // an unnumbered root, or noise
-        }
-        return id_of_root(p);
-    };
+    // 4. Number clusters by decreasing size, ties by smallest original member index. Each
+    //    component first gets a compact id, written to its members' labels: the roots' first
+    //    (numbered in position order), then every other member's from its root's.
+    r.labels.assign(n, kNone);
+    r.core.assign(n, 0);
+    std::uint32_t components = 0;
     for (std::uint32_t s = 0; s < m; ++s) {
-        const std::uint32_t k = cluster_of(s);
-        if (k != kNone) {
-            ++size[k];
-            first[k] = std::min(first[k], grid.index_of(s));
+        r.core[grid.index_of(s)] = core[s] != 0;
+        if (core[s] && parent[s].load(std::memory_order_relaxed) == s) {
+            r.labels[grid.index_of(s)] = components++;
         }
     }
-    std::vector<std::uint32_t> roots(size.size());
+    for (std::uint32_t s = 0; s < m; ++s) {
+        const std::uint32_t root = parent[s].load(std::memory_order_relaxed);
+        if (root != s) {  // a member of root's cluster (a point that is its own root is a root or noise)
+            r.labels[grid.index_of(s)] = r.labels[grid.index_of(root)];
+        }
+    }
+    std::vector<std::uint32_t> size(components, 0), first(components, kNone);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (const std::uint32_t k = r.labels[i]; k != kNone) {
+            ++size[k];
+            first[k] = std::min(first[k], i);
+        }
+    }
+    std::vector<std::uint32_t> roots(components);
     std::iota(roots.begin(), roots.end(), 0u);
     std::sort(roots.begin(), roots.end(), [&](std::uint32_t a, std::uint32_t b) {
         return size[a] != size[b] ? size[a] > size[b] : first[a] < first[b];
     });
-    std::vector<std::uint32_t> label_of(size.size());
-    for (std::uint32_t k = 0; k < roots.size(); ++k) {
+    std::vector<std::uint32_t> label_of(components);
+    for (std::uint32_t k = 0; k < components; ++k) {
         label_of[roots[k]] = k + 1;
     }
-    r.labels.assign(n, kNoise);
-    r.core.assign(n, 0);
-    for (std::uint32_t s = 0; s < m; ++s) {
-        const std::uint32_t i = grid.index_of(s);
-        r.core[i] = core[s] != 0;
-        if (const std::uint32_t k = cluster_of(s); k != kNone) {
-            r.labels[i] = label_of[k];
-        }
+    for (std::uint32_t& l : r.labels) {
+        l = l == kNone ? kNoise : label_of[l];
     }
     r.cluster_count = static_cast<std::uint32_t>(roots.size());
     return r;
@@ -345,12 +309,10 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
 
 }  // namespace
 
-DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams& params) {
-    return run(grid, n, params, nullptr);
-}
-
-DbscanResult dbscan(search::Grid&& grid, std::size_t n, const DbscanParams& params) {
-    return run(grid, n, params, &grid);
+DbscanResult dbscan(XyzRecords& points, const DbscanParams& params) {
+    params.validate();
+    const auto grid = search::grid_over(points, params.eps);
+    return run(*grid, points.size, params);
 }
 
 double estimate_eps(const XyzView& cloud, std::uint32_t min_points) {

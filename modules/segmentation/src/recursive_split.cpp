@@ -94,12 +94,11 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
 
 namespace {
 
-/// Labels: a vector handed over, or the word offset in XyzRecords sorted in place.
-template <class Points, class Labels>
-RecursiveSplitResult by_cores(const Points& points, Labels&& labels, const RecursiveSplitParams& params) {
-    CoreSplitResult c = core_split(points, std::forward<Labels>(labels), {.core_fraction = params.core_fraction,
-                                                              .min_cluster_size = params.min_cluster_size,
-                                                              .min_relative_size = params.min_relative_size});
+RecursiveSplitResult by_cores(const XyzView& points, std::vector<std::uint32_t> labels,
+                              const RecursiveSplitParams& params) {
+    CoreSplitResult c = core_split(points, std::move(labels), {.core_fraction = params.core_fraction,
+                                                    .min_cluster_size = params.min_cluster_size,
+                                                    .min_relative_size = params.min_relative_size});
     RecursiveSplitResult r;
     r.labels = std::move(c.labels);
     r.cluster_count = c.cluster_count;
@@ -113,39 +112,12 @@ RecursiveSplitResult by_cores(const Points& points, Labels&& labels, const Recur
 
 }  // namespace
 
-RecursiveSplitResult recursive_split(const XyzView& cloud, std::vector<std::uint32_t>&& labels,
+RecursiveSplitResult recursive_split(const XyzView& cloud,
+                                     std::vector<std::uint32_t> labels,
                                      const RecursiveSplitParams& params) {
     params.validate();
     if (params.rule == SplitRule::kCores) {
         return by_cores(cloud, std::move(labels), params);
-    }
-    return recursive_split(cloud, std::span<const std::uint32_t>(labels), params);
-}
-
-RecursiveSplitResult recursive_split(const XyzRecords& records, std::uint32_t label_offset,
-                                     const RecursiveSplitParams& params) {
-    params.validate();
-    if (params.rule == SplitRule::kCores) {
-        return by_cores(records, label_offset, params);
-    }
-    std::vector<std::uint32_t> labels(records.size);
-    for (std::size_t i = 0; i < records.size; ++i) {
-        std::memcpy(&labels[i], records.base + i * records.stride + label_offset, sizeof(std::uint32_t));
-    }
-    RecursiveSplitResult r = recursive_split(records.view(), std::span<const std::uint32_t>(labels), params);
-    for (std::size_t i = 0; i < records.size; ++i) {
-        std::memcpy(records.base + i * records.stride + label_offset, &r.labels[i], sizeof(std::uint32_t));
-    }
-    std::vector<std::uint32_t>().swap(r.labels);
-    return r;
-}
-
-RecursiveSplitResult recursive_split(const XyzView& cloud,
-                                     std::span<const std::uint32_t> labels,
-                                     const RecursiveSplitParams& params) {
-    params.validate();
-    if (params.rule == SplitRule::kCores) {
-        return by_cores(cloud, std::vector<std::uint32_t>(labels.begin(), labels.end()), params);
     }
     const std::size_t n = cloud.size;
     if (labels.size() != n) {

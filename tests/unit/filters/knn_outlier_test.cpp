@@ -1,11 +1,11 @@
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
 #include <pc/filters/knn_outlier.h>
-#include <pc/search/grid.h>
 
 #include "support/clouds.h"
 
@@ -50,29 +50,30 @@ TEST(KnnOutlier, ScoresMatchBruteForce) {
     }
 }
 
-TEST(KnnOutlier, ScoresOverAnInPlaceGridBuiltInTheirStorageMatchBruteForce) {
-    // The pipeline's way: the grid sorts the points in place, its keys in the scores' storage
-    // (Grid::Lent), then the scores are written there; the points are put back.
+TEST(KnnOutlier, RichRecordsGiveTheScoresOfThinOnesAndAreLeftInPlace) {
+    // Records of 12 bytes are sorted in place, of 24 bytes copied (search::grid_over): the
+    // scores are the same, and both come back byte for byte.
     Cloud c = test::concat(test::uniform(800, 1.0f, 12), test::grid({2, 2, 2}, 4, 0.05f));
     c.push_back(test::nan_point());
-    Cloud sorted = c;
-    const XyzRecords records{reinterpret_cast<std::uint8_t*>(sorted.data()), sizeof(pcl::PointXYZ), sorted.size(), 0};
-    std::vector<double> mean(c.size());
-    {
-        search::Grid grid(search::Grid::kInPlace, records, cell_for_knn(XyzView(c)),
-                          {.keys = {reinterpret_cast<std::uint64_t*>(mean.data()), mean.size()}});
-        knn_mean_distance(grid, 5, mean);
-        grid.restore_order(records);
-    }
     const auto ref = brute_scores(c, 5);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        if (std::isfinite(ref[i])) {
-            EXPECT_NEAR(mean[i], ref[i], 1e-12) << i;
-        } else {
-            EXPECT_FALSE(std::isfinite(mean[i])) << i;
+    for (const std::size_t stride : {12u, 24u}) {
+        std::vector<std::uint8_t> bytes(c.size() * stride, 0xAB);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            std::memcpy(&bytes[i * stride], &c[i].x, 12);
         }
+        const std::vector<std::uint8_t> original = bytes;
+        XyzRecords records{bytes.data(), stride, c.size(), 0};
+        const auto r = knn_outlier(records, {.k = 5});
+        EXPECT_EQ(bytes, original) << "stride " << stride;
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            if (std::isfinite(ref[i])) {
+                EXPECT_NEAR(r.mean_distance[i], ref[i], 1e-12) << i;
+            } else {
+                EXPECT_FALSE(std::isfinite(r.mean_distance[i])) << i;
+            }
+        }
+        EXPECT_EQ(r.outlier, knn_outlier(c, {.k = 5}).outlier);
     }
-    EXPECT_EQ(knn_outlier(std::move(mean), {.k = 5}).outlier, knn_outlier(c, {.k = 5}).outlier);
 }
 
 TEST(KnnOutlier, DropsTheTopTenPercentAtOrAboveTheCut) {

@@ -109,32 +109,6 @@ TEST(Blob, SetFieldGrowsWithinTheRoomReservedByTheReaders) {
     }
 }
 
-TEST(Blob, SpareWordsLendsTheReservedRoomWithoutMovingThePoints) {
-    Blob b = test::random_xyz(1000);
-    {
-        SpareWords none(b);  // an exact vector: no room, and the points are not moved to make it
-        EXPECT_TRUE(none.words().empty());
-    }
-    const std::vector<std::uint8_t> points = b.cloud.data;
-    reserve_points(b, b.size());
-    const std::uint8_t* storage = b.cloud.data.data();
-    {
-        SpareWords spare(b);
-        ASSERT_EQ(spare.words().size(), 1000u);
-        EXPECT_EQ(b.cloud.data.data(), storage);
-        // The words lie past the points, 4-aligned, inside the capacity.
-        const auto* first = reinterpret_cast<const std::uint8_t*>(spare.words().data());
-        EXPECT_GE(first, storage + points.size());
-        EXPECT_LE(first + 4000, storage + b.cloud.data.capacity());
-        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(first) % 4, 0u);
-        std::fill(spare.words().begin(), spare.words().end(), 0xFFFFFFFFu);
-    }
-    EXPECT_EQ(b.cloud.data, points);  // given back: the same size and bytes
-    EXPECT_EQ(b.cloud.data.data(), storage);
-    set_field(b, "label", std::vector<std::uint32_t>(1000, 7));  // the room still serves the field
-    EXPECT_EQ(b.cloud.data.data(), storage);
-}
-
 TEST(Blob, SetFieldReplacesFieldOfAnotherType) {
     Blob b = test::make_blob({{"x", F::FLOAT32}, {"label", F::INT16}, {"y", F::FLOAT32}}, 2, 1,
                              [](auto...) { return 1.0; });

@@ -5,8 +5,10 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <memory>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <tuple>
 
 #include <gtest/gtest.h>
@@ -302,20 +304,15 @@ std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride, std::ui
 
 /// Checks an in-place grid over `c` (as records of `stride` bytes, x at `offset`) against the
 /// copying grid: the records are whole and in cell order, the answers are the same, and
-/// restore_order() gives back the original bytes.
-void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset,
-                                      Grid::Lent lent = {}) {
+/// the destructor gives back the original bytes.
+void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset) {
     SCOPED_TRACE("stride " + std::to_string(stride) + ", cell " + std::to_string(cell));
     std::vector<std::uint8_t> bytes = records_of(c, stride, offset);
     const std::vector<std::uint8_t> original = bytes;
-    const XyzRecords records{bytes.data(), stride, c.size(), offset};
+    XyzRecords records{bytes.data(), stride, c.size(), offset};
     const Grid copy(c, cell);
-    Grid grid(Grid::kInPlace, records, cell, lent);
-    if (lent.order.size() >= c.size()) {  // the order lives in the lent words
-        for (std::uint32_t s = 0; s < grid.finite_count(); ++s) {
-            ASSERT_EQ(grid.index_of(s), lent.order[s]) << "position " << s;
-        }
-    }
+    auto grid_ptr = std::make_unique<Grid>(records, cell);
+    Grid& grid = *grid_ptr;
     ASSERT_EQ(grid.finite_count(), copy.finite_count());
     ASSERT_EQ(grid.cell_count(), copy.cell_count());
     EXPECT_EQ(grid.point_stride(), stride / 4);
@@ -351,17 +348,18 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
     copy.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx, const std::vector<double>&) { all_b[i] = idx; });
     EXPECT_EQ(all_a, all_b);
     EXPECT_THROW(grid.knn(0, 3, idx_a, d2_a), std::logic_error);  // the records have moved
-    grid.restore_order(records);
+    grid_ptr.reset();
     EXPECT_EQ(bytes, original);
-    // With each cell put in index order, the in-place grid's positions are the copying grid's.
-    Grid ordered(Grid::kInPlace, records, cell, lent);
-    ordered.order_cells_by_index();
-    for (std::uint32_t s = 0; s < ordered.finite_count(); ++s) {
-        ASSERT_EQ(ordered.index_of(s), copy.index_of(s)) << "position " << s;
-        ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[copy.index_of(s) * stride], stride)) << "position " << s;
+    {
+        // With each cell put in index order, the in-place grid's positions are the copying grid's.
+        Grid ordered(records, cell);
+        ordered.order_cells_by_index();
+        for (std::uint32_t s = 0; s < ordered.finite_count(); ++s) {
+            ASSERT_EQ(ordered.index_of(s), copy.index_of(s)) << "position " << s;
+            ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[copy.index_of(s) * stride], stride)) << "position " << s;
+        }
+        EXPECT_EQ(median_spacing(ordered), median_spacing(copy));
     }
-    EXPECT_EQ(median_spacing(ordered), median_spacing(copy));
-    ordered.restore_order(records);
     EXPECT_EQ(bytes, original);
 }
 
@@ -430,7 +428,8 @@ TEST(Grid, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
         std::vector<std::uint8_t> bytes = records_of(c, stride, 0);
         const std::vector<std::uint8_t> original = bytes;
         std::vector<std::uint32_t> places = to;
-        permute_records(XyzRecords{bytes.data(), stride, c.size(), 0}, places);
+        XyzRecords records{bytes.data(), stride, c.size(), 0};
+        permute_records(records, places);
         for (std::size_t i = 0; i < c.size(); ++i) {
             ASSERT_EQ(0, std::memcmp(&bytes[to[i] * stride], &original[i * stride], stride)) << "stride " << stride << ", record " << i;
         }
@@ -446,8 +445,10 @@ TEST(Grid, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
     EXPECT_THROW(permute_records(values.data(), 6, places), std::logic_error);
     std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
     std::vector<std::uint32_t> short_places(c.size() - 1);
-    EXPECT_THROW(permute_records(XyzRecords{bytes.data(), 16, c.size(), 0}, short_places), std::logic_error);
-    EXPECT_THROW(permute_records(XyzRecords{bytes.data(), 14, c.size() - 1, 0}, short_places), std::logic_error);
+    XyzRecords too_many{bytes.data(), 16, c.size(), 0};
+    XyzRecords odd_size{bytes.data(), 14, c.size() - 1, 0};
+    EXPECT_THROW(permute_records(too_many, short_places), std::logic_error);
+    EXPECT_THROW(permute_records(odd_size, short_places), std::logic_error);
 }
 
 TEST(Grid, InPlaceSortsFewRecordsWithRepeatedKeys) {
@@ -468,33 +469,56 @@ TEST(Grid, InPlaceSortsLargeCloudsAndWideKeys) {
     expect_in_place_grid_equals_copy(test::uniform(3000, 1.0f, 14), 2e-4, 12, 0);
 }
 
-TEST(Grid, InPlaceBuildsInLentMemoryOrItsOwn) {
-    // Lent order and key scratch large enough are used (32- and 39-bit keys); lent memory too
-    // small is left alone and the grid allocates its own. The answers are the same either way.
+TEST(Grid, InPlaceHandlesNonFinitePointsAndWideKeys) {
+    // Non-finite points sort after the finite ones and come back to their places (32- and
+    // 39-bit keys, records of 12 and 16 bytes).
     Cloud c = mixed_density_cloud();
     c.push_back(test::nan_point());
     for (double cell : {0.02, 2e-6}) {
-        std::vector<std::uint32_t> order(c.size() + 3, 0xDEADBEEF);
-        std::vector<std::uint64_t> keys(c.size());
-        expect_in_place_grid_equals_copy(c, cell, 12, 0, {.order = order, .keys = keys});
-        std::vector<std::uint32_t> small_order(c.size() - 1, 0xDEADBEEF);
-        std::vector<std::uint64_t> small_keys(c.size() - 1, 7);
-        expect_in_place_grid_equals_copy(c, cell, 16, 0, {.order = small_order, .keys = small_keys});
-        EXPECT_TRUE(std::all_of(small_order.begin(), small_order.end(), [](std::uint32_t v) { return v == 0xDEADBEEF; }));
-        EXPECT_TRUE(std::all_of(small_keys.begin(), small_keys.end(), [](std::uint64_t v) { return v == 7; }));
+        expect_in_place_grid_equals_copy(c, cell, 12, 0);
+        expect_in_place_grid_equals_copy(c, cell, 16, 0);
     }
 }
 
 TEST(Grid, InPlaceChecksItsRecords) {
     const Cloud c = test::uniform(50, 1.0f, 3);
     std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
-    EXPECT_THROW(Grid(Grid::kInPlace, XyzRecords{bytes.data(), 14, 50, 0}, 0.1), std::logic_error);
-    EXPECT_THROW(Grid(Grid::kInPlace, XyzRecords{bytes.data(), 16, 50, 6}, 0.1), std::logic_error);
-    Grid grid(Grid::kInPlace, XyzRecords{bytes.data(), 16, 50, 0}, 0.1);
-    std::vector<std::uint8_t> other = bytes;
-    EXPECT_THROW(grid.restore_order(XyzRecords{other.data(), 16, 50, 0}), std::logic_error);
-    const Grid copy(c, 0.1);
-    EXPECT_THROW(const_cast<Grid&>(copy).restore_order(XyzRecords{bytes.data(), 16, 50, 0}), std::logic_error);
+    XyzRecords odd_stride{bytes.data(), 14, 50, 0};
+    XyzRecords odd_offset{bytes.data(), 16, 50, 6};
+    EXPECT_THROW(Grid(odd_stride, 0.1), std::logic_error);
+    EXPECT_THROW(Grid(odd_offset, 0.1), std::logic_error);
+}
+
+TEST(Grid, InPlacePutsTheRecordsBackWhenUnwinding) {
+    // The guard: an exception thrown while the records are in cell order leaves them in their
+    // original order.
+    const Cloud c = test::uniform(5000, 1.0f, 8);
+    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    const std::vector<std::uint8_t> original = bytes;
+    XyzRecords records{bytes.data(), 16, c.size(), 0};
+    try {
+        const Grid grid(records, 0.05);
+        ASSERT_NE(bytes, original);  // sorted into cell order
+        throw std::runtime_error("mid-search");
+    } catch (const std::runtime_error&) {
+    }
+    EXPECT_EQ(bytes, original);
+}
+
+TEST(Grid, OverThinRecordsSortsInPlaceOverRichOnesCopies) {
+    const Cloud c = test::uniform(2000, 1.0f, 9);
+    for (const std::size_t stride : {12u, 16u, 20u}) {
+        std::vector<std::uint8_t> bytes = records_of(c, stride, 0);
+        const std::vector<std::uint8_t> original = bytes;
+        XyzRecords records{bytes.data(), stride, c.size(), 0};
+        {
+            const auto grid = grid_over(records, 0.05);
+            const bool in_place = grid->point(0) == reinterpret_cast<const float*>(bytes.data());
+            EXPECT_EQ(in_place, stride <= 16) << "stride " << stride;
+            EXPECT_EQ(grid->finite_count(), c.size());
+        }
+        EXPECT_EQ(bytes, original) << "stride " << stride;
+    }
 }
 
 TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
@@ -532,10 +556,11 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
     with_nan[5].x = std::numeric_limits<float>::quiet_NaN();
     Grid partial(with_nan, cell);
     EXPECT_THROW(partial.renumber_by_position(), std::logic_error);
-    // Built in place, the records stay in cell order; the grid can no longer put them back.
+    // Built in place, the records stay in cell order, also after the grid is gone.
     std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
-    const XyzRecords records{bytes.data(), 16, c.size(), 0};
-    Grid in_place(Grid::kInPlace, records, cell);
+    XyzRecords records{bytes.data(), 16, c.size(), 0};
+    auto in_place_ptr = std::make_unique<Grid>(records, cell);
+    Grid& in_place = *in_place_ptr;
     in_place.order_cells_by_index();
     in_place.renumber_by_position();
     for (std::uint32_t s = 0; s < sorted.size(); s += 7) {
@@ -546,9 +571,13 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
         rebuilt.for_each_within(sorted[s], cell, [&](std::uint32_t j, double) { want.push_back(j); });
         EXPECT_EQ(got, want) << "position " << s;
     }
-    EXPECT_THROW(in_place.restore_order(records), std::logic_error);
+    in_place_ptr.reset();
+    for (std::uint32_t s = 0; s < sorted.size(); s += 7) {
+        EXPECT_EQ(records.view()[s].x, sorted[s].x);
+    }
     std::vector<std::uint8_t> nan_bytes = records_of(with_nan, 16, 0);
-    Grid in_place_nan(Grid::kInPlace, XyzRecords{nan_bytes.data(), 16, c.size(), 0}, cell);
+    XyzRecords nan_records{nan_bytes.data(), 16, c.size(), 0};
+    Grid in_place_nan(nan_records, cell);
     EXPECT_THROW(in_place_nan.renumber_by_position(), std::logic_error);
 }
 

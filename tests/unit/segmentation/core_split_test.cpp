@@ -107,20 +107,21 @@ TEST(CoreSplit, TouchingSolidBallsAreCutAtTheirNecks) {
     EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));  // a few points at the necks
 }
 
-TEST(CoreSplit, HandingOverTheLabelsGivesTheSameResult) {
-    // Sparse label values and noise between clusters: the compaction written over the handed-over
-    // labels must give what the viewed labels give.
+TEST(CoreSplit, SparseLabelValuesGiveTheResultOfDenseOnes) {
+    // Sparse label values and noise between clusters: the clusters are compacted first, so the
+    // partition is that of the same labels numbered densely.
     Scene s = bunch();
-    std::vector<std::uint32_t> label = s.label;
+    std::vector<std::uint32_t> label = s.label, dense = s.label;
     for (std::size_t i = 0; i < label.size(); ++i) {
         label[i] = i % 13 == 0 ? 0 : 7 * label[i] + 3;
+        dense[i] = i % 13 == 0 ? 0 : dense[i];
     }
     const CoreSplitResult viewed = core_split(s.cloud, label, {});
-    const CoreSplitResult handed = core_split(XyzView(s.cloud), std::vector<std::uint32_t>(label), {});
-    EXPECT_EQ(handed.labels, viewed.labels);
-    EXPECT_EQ(handed.depth, viewed.depth);
-    EXPECT_EQ(handed.cluster_count, viewed.cluster_count);
-    EXPECT_EQ(handed.splits, viewed.splits);
+    const CoreSplitResult compact = core_split(s.cloud, dense, {});
+    EXPECT_EQ(compact.labels, viewed.labels);
+    EXPECT_EQ(compact.depth, viewed.depth);
+    EXPECT_EQ(compact.cluster_count, viewed.cluster_count);
+    EXPECT_EQ(compact.splits, viewed.splits);
     EXPECT_GE(viewed.splits, 1u);
     // The same points seen through a subset view (all of them, in order).
     std::vector<std::uint32_t> all(s.cloud.size());
@@ -153,81 +154,6 @@ TEST(CoreSplit, ASubsetViewGivesWhatACopyOfItsPointsGives) {
     EXPECT_EQ(viewed.spacing, copied.spacing);
     EXPECT_EQ(copied.cluster_count, 7u);
     EXPECT_GE(copied.splits, 1u);
-}
-
-/// The points of `c` as records of `stride` bytes, x y z at `offset`, the label at `label_at`;
-/// every other byte holds a pattern of the point's index.
-std::vector<std::uint8_t> labelled_records(const Cloud& c, const std::vector<std::uint32_t>& label, std::size_t stride,
-                                           std::uint32_t offset, std::uint32_t label_at) {
-    std::vector<std::uint8_t> bytes(c.size() * stride);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        std::uint8_t* r = &bytes[i * stride];
-        for (std::size_t b = 0; b < stride; ++b) {
-            r[b] = static_cast<std::uint8_t>(i * 131 + b * 7);
-        }
-        std::memcpy(r + offset, &c[i].x, 4);
-        std::memcpy(r + offset + 4, &c[i].y, 4);
-        std::memcpy(r + offset + 8, &c[i].z, 4);
-        std::memcpy(r + label_at, &label[i], 4);
-    }
-    return bytes;
-}
-
-TEST(CoreSplit, OnRecordsItGivesTheViewsResultAndPutsTheRecordsBack) {
-    // The records are sorted in place (the clustered ones first when there is noise) and put
-    // back; their label words hold the result. Solid balls, and hollow shells (the sphere
-    // split and merges run on the records back in point order); sparse labels, noise points
-    // between the clusters (set aside while the clustered records close up), a NaN point with a
-    // label; all points clustered (nothing parted); two thirds noise (parted by a sort).
-    Scene shells;
-    for (int i = 0; i < 5; ++i) {
-        for (const auto& p : test::sphere_shell(1.0f, 600, 40 + static_cast<unsigned>(i))) {
-            shells.cloud.push_back({p.x + (i == 4 ? 14.05f : 4.0f * static_cast<float>(i)), p.y, p.z});
-            shells.label.push_back(1 + static_cast<std::uint32_t>(std::min(i, 3)));
-        }
-    }
-    for (Scene s : {bunch(), shells}) {
-    std::vector<std::uint32_t> sparse = s.label;
-    for (std::size_t i = 0; i < sparse.size(); ++i) {
-        sparse[i] = i % 13 == 0 ? 0 : 7 * sparse[i] + 3;
-    }
-    std::vector<std::uint32_t> mostly_noise = s.label;  // too much noise to be set aside
-    for (std::size_t i = 0; i < mostly_noise.size(); ++i) {
-        mostly_noise[i] = i % 3 == 0 ? mostly_noise[i] : 0;
-    }
-    s.cloud[17] = test::nan_point();
-    for (const auto& label : {sparse, s.label, mostly_noise}) {
-        const CoreSplitResult want = core_split(s.cloud, label, {});
-        ASSERT_GE(want.splits, label == mostly_noise ? 0u : 1u);
-        for (const auto& [stride, offset, label_at] : {std::tuple<std::size_t, std::uint32_t, std::uint32_t>{16, 0, 12}, {24, 8, 4}}) {
-            SCOPED_TRACE("stride " + std::to_string(stride));
-            std::vector<std::uint8_t> bytes = labelled_records(s.cloud, label, stride, offset, label_at);
-            const std::vector<std::uint8_t> original = bytes;
-            const CoreSplitResult got = core_split(XyzRecords{bytes.data(), stride, s.cloud.size(), offset}, label_at, {});
-            EXPECT_TRUE(got.labels.empty());
-            EXPECT_TRUE(got.depth.empty());
-            EXPECT_EQ(got.cluster_count, want.cluster_count);
-            EXPECT_EQ(got.splits, want.splits);
-            EXPECT_EQ(got.hollow_splits, want.hollow_splits);
-            EXPECT_EQ(got.hollow_radius, want.hollow_radius);
-            EXPECT_EQ(got.spacing, want.spacing);
-            EXPECT_EQ(got.fruit_radius, want.fruit_radius);
-            for (std::size_t i = 0; i < s.cloud.size(); ++i) {
-                std::uint32_t l = 0;
-                std::memcpy(&l, &bytes[i * stride + label_at], 4);
-                ASSERT_EQ(l, want.labels[i]) << "point " << i;
-                std::memcpy(&bytes[i * stride + label_at], &original[i * stride + label_at], 4);
-            }
-            EXPECT_EQ(bytes, original);  // every other byte back in its place
-        }
-    }
-    }
-    const Scene s = bunch();
-    std::vector<std::uint8_t> bytes = labelled_records(s.cloud, s.label, 16, 0, 12);
-    const XyzRecords records{bytes.data(), 16, s.cloud.size(), 0};
-    EXPECT_THROW((void)core_split(records, 8, {}), std::logic_error);   // over z
-    EXPECT_THROW((void)core_split(records, 14, {}), std::logic_error);  // not a word
-    EXPECT_THROW((void)core_split(records, 16, {}), std::logic_error);  // past the record
 }
 
 TEST(CoreSplit, SamePartitionWhenScaledOrRotated) {

@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -7,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
-#include <pc/search/grid.h>
 #include <pc/segmentation/dbscan.h>
 
 #include "support/clouds.h"
@@ -106,40 +106,27 @@ TEST(Dbscan, MatchesBruteForceOnDenseBlobsNearEachOther) {
     }
 }
 
-TEST(Dbscan, OverAGridWhoseCloudWasFreedGivesTheSameResult) {
+TEST(Dbscan, ThinAndRichRecordsGiveTheSameResultAndAreLeftInPlace) {
+    // 12-byte records are sorted in place, 20-byte ones copied (search::grid_over): the same
+    // clusters either way, with NaN points, and the records come back byte for byte.
     const DbscanParams p{.eps = 0.05, .min_points = 4};
-    auto cloud = std::make_unique<Cloud>(test::concat(test::uniform(800, 1.0f, 41), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 42)));
-    const DbscanResult want = dbscan(*cloud, p);
-    search::Grid grid(*cloud, p.eps);
-    const std::size_t n = cloud->size();
-    grid.release_cloud();
-    cloud.reset();
-    const DbscanResult got = dbscan(grid, n, p);
-    EXPECT_EQ(got.labels, want.labels);
-    EXPECT_EQ(got.core, want.core);
-    EXPECT_EQ(got.cluster_count, want.cluster_count);
-    std::vector<std::uint32_t> idx;
-    std::vector<double> d2;
-    EXPECT_THROW(grid.knn(0, 3, idx, d2), std::logic_error);
-    EXPECT_THROW((void)dbscan(grid, n, {.eps = 0.2, .min_points = 4}), InvalidArgument);  // cells < eps
-}
-
-TEST(Dbscan, OverAHandedOverGridGivesTheSameResultAndKeepsItsOrder) {
-    // The grid's coordinates and cells are freed before the result is built; index_of stays.
-    const DbscanParams p{.eps = 0.05, .min_points = 4};
-    const Cloud cloud = test::concat(test::uniform(800, 1.0f, 43), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 44));
-    const search::Grid viewed(cloud, p.eps);
-    search::Grid handed(cloud, p.eps);
-    const DbscanResult want = dbscan(viewed, cloud.size(), p);
-    const DbscanResult got = dbscan(std::move(handed), cloud.size(), p);
-    EXPECT_EQ(got.labels, want.labels);
-    EXPECT_EQ(got.core, want.core);
-    EXPECT_EQ(got.cluster_count, want.cluster_count);
-    ASSERT_EQ(handed.finite_count(), viewed.finite_count());  // NOLINT(bugprone-use-after-move): kept on purpose
-    for (std::uint32_t s = 0; s < viewed.finite_count(); ++s) {
-        EXPECT_EQ(handed.index_of(s), viewed.index_of(s));
+    Cloud c = test::concat(test::uniform(800, 1.0f, 41), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 42));
+    c.push_back(test::nan_point());
+    const DbscanResult want = dbscan(c, p);
+    expect_same_partition(want, brute_dbscan(c, p.eps, p.min_points));
+    for (const std::size_t stride : {12u, 20u}) {
+        std::vector<std::uint8_t> bytes(c.size() * stride, 0x5A);
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            std::memcpy(&bytes[i * stride], &c[i].x, 12);
+        }
+        const std::vector<std::uint8_t> original = bytes;
+        XyzRecords records{bytes.data(), stride, c.size(), 0};
+        const DbscanResult got = dbscan(records, p);
+        EXPECT_EQ(bytes, original) << "stride " << stride;
+        EXPECT_EQ(got.labels, want.labels) << "stride " << stride;
+        EXPECT_EQ(got.core, want.core) << "stride " << stride;
+        EXPECT_EQ(got.cluster_count, want.cluster_count) << "stride " << stride;
     }
-    EXPECT_EQ(handed.cell_count(), 0u);
 }
 
 TEST(Dbscan, PointsAtExactlyEpsAreNeighbours) {

@@ -68,14 +68,24 @@ struct XyzView {
     }
 };
 
-/// The points of a cloud's own memory, which Grid's in-place constructor may reorder: `size`
-/// records of `stride` bytes at `base`, each with x, y, z as consecutive floats at byte `offset`
-/// (stride and offset multiples of 4, base 4-aligned). Records are moved whole.
+/// The points of a cloud's own memory, which an algorithm taking `XyzRecords&` may reorder while
+/// it runs (search::Grid's in-place build): `size` records of `stride` bytes at `base`, each with
+/// x, y, z as consecutive floats at byte `offset` (stride and offset multiples of 4, base
+/// 4-aligned). Records are moved whole. Functions that only read take an XyzView (view()).
 struct XyzRecords {
     std::uint8_t* base = nullptr;
     std::size_t stride = 0;
     std::size_t size = 0;
     std::uint32_t offset = 0;  ///< byte offset of x (y at + 4, z at + 8)
+
+    XyzRecords() = default;
+    XyzRecords(std::uint8_t* at, std::size_t record_bytes, std::size_t count, std::uint32_t x_offset)
+        : base(at), stride(record_bytes), size(count), offset(x_offset) {}
+    /// The points of a pcl cloud (16-byte records, x at 0).
+    explicit XyzRecords(Cloud& cloud)
+        : base(reinterpret_cast<std::uint8_t*>(cloud.points.data())),
+          stride(sizeof(pcl::PointXYZ)),
+          size(cloud.size()) {}
 
     /// Whether x y z can be read as floats in place: stride and offset multiples of 4, x y z
     /// inside a record, base 4-aligned.

@@ -44,25 +44,6 @@ struct Blob {
 /// call it; room that is never written is never touched and costs address space, not memory.
 void reserve_points(Blob& blob, std::size_t points);
 
-/// Lends the room reserve_points() made past the blob's points, one 4-byte word a point, for
-/// scratch a step needs while the points stay where they are (an in-place grid's order,
-/// search::Grid::Lent). words() is empty when the capacity has no such room: the points are
-/// never moved to make it. The blob must not be resized while lent; the destructor gives the
-/// room back. Room a later set_field() fills anyway then serves twice.
-class SpareWords {
-public:
-    explicit SpareWords(Blob& blob);
-    ~SpareWords();
-    SpareWords(const SpareWords&) = delete;
-    SpareWords& operator=(const SpareWords&) = delete;
-    [[nodiscard]] std::span<std::uint32_t> words() const { return words_; }
-
-private:
-    Blob& blob_;
-    std::size_t bytes_;  // the data's size before the loan
-    std::span<std::uint32_t> words_;
-};
-
 /// Keeps the points at `indices` (strictly ascending, each < size()), in place: the data is
 /// compacted, not copied. The result is unorganised (height 1). Throws pc::Error on a bad index.
 void keep_points(Blob& blob, std::span<const std::uint32_t> indices);

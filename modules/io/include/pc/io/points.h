@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstdint>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -24,18 +23,28 @@ public:
     XyzPoints(const XyzPoints&) = delete;
     XyzPoints& operator=(const XyzPoints&) = delete;
     [[nodiscard]] const XyzView& view() const { return view_; }
-    /// Frees a converted copy (the view is empty afterwards); nothing to free for a view.
-    void release();
 
 private:
     Cloud copy_;
     XyzView view_;
 };
 
-/// The blob's points as records a grid may sort in place (search::Grid::kInPlace): when x, y, z
-/// are F 4 at consecutive 4-aligned offsets and point_step is a multiple of 4 (as PCL and these
-/// tools write them); nothing otherwise (then XyzPoints). The blob must outlive the records.
-[[nodiscard]] std::optional<XyzRecords> xyz_records(Blob& blob);
+/// The blob's points for algorithms that may reorder them while they run (those taking
+/// XyzRecords&: dbscan, knn_outlier): the blob's own records when x, y, z are consecutive
+/// 4-aligned F 4 fields (as PCL and these tools write them), otherwise a converted copy (a pcl
+/// cloud, 16 bytes a point) owned by this object. The blob must outlive it and not be resized
+/// meanwhile. Throws pc::IoError as xyz() does.
+class XyzSortable {
+public:
+    explicit XyzSortable(Blob& blob);
+    XyzSortable(const XyzSortable&) = delete;
+    XyzSortable& operator=(const XyzSortable&) = delete;
+    [[nodiscard]] XyzRecords& records() { return records_; }
+
+private:
+    Cloud copy_;
+    XyzRecords records_;
+};
 
 /// A colour with channels in [0, 1].
 struct Rgb {

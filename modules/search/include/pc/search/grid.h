@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <span>
 #include <utility>
@@ -29,7 +30,7 @@ class Grid;
 
 /// Moves record i to place to[i] in place (`to`: a permutation of 0..size-1; it is left
 /// sorted). Records are whole 4-byte words (std::logic_error otherwise, or on a size mismatch).
-void permute_records(const XyzRecords& records, std::span<std::uint32_t> to);
+void permute_records(XyzRecords& records, std::span<std::uint32_t> to);
 /// The same for to.size() records of `stride` bytes (a multiple of 4) at `base`: e.g. the
 /// elements of an array of 4-byte values.
 void permute_records(void* base, std::size_t stride, std::span<std::uint32_t> to);
@@ -40,35 +41,22 @@ public:
     Grid& operator=(const Grid&) = delete;
 
     /// Builds the grid with cubic cells of side `cell` (> 0), enlarged if an axis would need more
-    /// than 2^21 cells (queries stay exact). Non-finite points are left out.
+    /// than 2^21 cells (queries stay exact). Non-finite points are left out. The grid keeps its
+    /// own copy of the finite points' x y z (12 bytes a point) in cell order.
     Grid(const XyzView& points, double cell);
-    /// The same over a pcl cloud (which, like the points of a view, must outlive the grid unless
-    /// release_cloud() is called).
+    /// The same over a pcl cloud (which, like the points of a view, must outlive the grid: knn(i)
+    /// reads it).
     Grid(const Cloud& cloud, double cell) : Grid(XyzView(cloud), cell) {}
 
-    /// Selects the constructor that sorts a cloud's own records instead of copying them.
-    struct InPlace {};
-    static constexpr InPlace kInPlace{};
-    /// Builds the grid by sorting `records` themselves into cell order (whole records, with
-    /// non-finite points moved after the finite ones), and reads the coordinates there: no copy
-    /// of the points (12 bytes each), which on an x y z-only cloud is the size of the cloud.
-    /// The records stay in grid order until restore_order() puts them back; meanwhile they must
-    /// not move or be written, and knn(i) is not available (as after release_cloud()).
-    Grid(InPlace, const XyzRecords& records, double cell) : Grid(kInPlace, records, cell, Lent{}) {}
-    /// Memory a caller lends an in-place grid so that its build allocates less (each part is
-    /// used when it is large enough, else the grid allocates its own): `order`, one word a
-    /// record, holds index_of() until restore_order() (it must outlive that); `keys`, 8 bytes a
-    /// record, holds the cell keys while the constructor sorts (free again once it returns).
-    /// Memory that the caller fills afterwards anyway (e.g. a result array) then serves twice.
-    struct Lent {
-        std::span<std::uint32_t> order;
-        std::span<std::uint64_t> keys;
-    };
-    Grid(InPlace, const XyzRecords& records, double cell, Lent lent);
-    /// Puts the records an in-place grid sorted back in their original order and frees the grid
-    /// (no call but finite_count() is valid afterwards). Also after release_all_but_order().
-    /// `records` must be the ones the grid was built from (std::logic_error otherwise).
-    void restore_order(const XyzRecords& records);
+    /// Builds the grid by sorting the cloud's own records into cell order (whole records, the
+    /// non-finite points after the finite ones) and reads the coordinates there: no copy of the
+    /// points, which on an x y z-only cloud would be the size of the cloud. The destructor puts
+    /// the records back in their order (also when unwinding an exception), unless
+    /// renumber_by_position() handed the cell order over to the caller. Until then the records
+    /// must not move or be written, and knn(i) is not available. std::logic_error when x y z
+    /// are not 4-aligned floats (XyzRecords::aligned()).
+    Grid(XyzRecords& records, double cell);
+    ~Grid();
 
     /// A cell side giving about `target` points per occupied cell (adapts to surfaces and lines:
     /// the occupancy is measured, not assumed).
@@ -139,19 +127,12 @@ public:
     }
 
     [[nodiscard]] double cell() const { return cell_; }
-    /// Forgets the cloud, which the caller may then free: sweeps, radius queries, knn_point()
-    /// and all_knn() work on the grid's own copy of the points; knn(i) needs the cloud (throws).
-    void release_cloud() { has_points_ = false; }
-    /// Frees the sorted coordinates, the cells and the search structures, keeping index_of() and
-    /// finite_count() (the only calls left valid): for a caller done searching that still maps
-    /// sorted positions back to indices while it allocates its result.
-    void release_all_but_order();
     /// Renumbers the points by sorted position (index_of(s) == s afterwards), for a caller that
     /// keeps its per-point data in cell order, where neighbours lie near each other in memory:
     /// it moves its point index_of(s) to place s (reading index_of() before this call) and views
-    /// the points in that order. The grid frees its order and forgets its cloud (as
-    /// release_cloud()). Built in place, the records stay in cell order for good (restore_order()
-    /// throws): the caller puts them back (permute_records()). Every point must be finite
+    /// the points in that order. The grid frees its order and forgets its cloud (knn(i) throws).
+    /// Built in place, the records stay in cell order for good: the caller owns that order
+    /// and puts them back itself if it must (permute_records()). Every point must be finite
     /// (std::logic_error).
     void renumber_by_position();
     /// Puts each cell's records, sorted in place, in their original order, as a grid that copies
@@ -224,9 +205,8 @@ private:
     std::vector<float> xyz_;              // sorted by cell, 3 floats per point (unless in place)
     const float* xyz_at_ = nullptr;       // x of sorted position 0: xyz_, or the sorted records
     std::size_t stride_ = 3;              // floats from one sorted position to the next
-    std::span<std::uint32_t> order_;      // original index of each sorted point (in place: all
-                                          // points, the non-finite ones after finite_count()):
-    std::vector<std::uint32_t> own_order_;  // in own_order_, or in memory lent by the caller
+    std::vector<std::uint32_t> order_;    // original index of each sorted point (in place: all
+                                          // points, the non-finite ones after finite_count())
     std::size_t finite_ = 0;
     XyzRecords sorted_;                   // the records sorted in place, if in_place_
     bool in_place_ = false;
@@ -235,12 +215,14 @@ private:
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
     XyzView points_;  // the indexed points, for knn(i)
-    bool has_points_ = true;
+    bool has_points_ = true;  // false when built in place or renumbered: knn(i) throws
 };
 
-/// median_spacing() of the records' points from a grid that sorts them in place (in each cell in
-/// index order) and puts them back: no copy of the points. `lent` as for that grid.
-[[nodiscard]] double median_spacing(const XyzRecords& records, Grid::Lent lent = {}, std::size_t samples = 20000);
+/// A grid over records with the storage that costs least memory: thin records (at most 16
+/// bytes, where a 12-byte copy of x y z would be three quarters of the cloud or more) are sorted
+/// in place and put back when the grid is destroyed; richer ones are copied, which is faster
+/// (sorting and restoring 1M records costs about 20 ms more than copying x y z).
+[[nodiscard]] std::unique_ptr<Grid> grid_over(XyzRecords& records, double cell);
 
 template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
+#include <utility>
 #include <vector>
 
 #include <pc/core/cloud.h>
@@ -56,27 +56,15 @@ struct CoreSplitResult {
 /// radius up to 1.33 × the fruit's is one fruit. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
 /// centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0 stays noise;
 /// non-finite points become noise. Deterministic.
+/// `labels` (one per point) is taken by value: move it in and it is freed once the clustered
+/// points are copied into the records the steps sort, before the steps allocate.
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
-                                         std::span<const std::uint32_t> labels,
-                                         const CoreSplitParams& params);
-/// The same, taking the labels (freed once the clustered points' coordinates and cluster ids are
-/// copied into the 16-byte records the steps sort: one per-point array less at the peak).
-[[nodiscard]] CoreSplitResult core_split(const XyzView& points,
-                                         std::vector<std::uint32_t>&& labels,
-                                         const CoreSplitParams& params);
-/// The same working on the points' own records, each holding its label in a 4-byte word at byte
-/// `label_offset` (beside x y z): it sorts the records where they are instead of copying the
-/// coordinates and labels (16 bytes a point: on an x y z label cloud, its whole size), puts them
-/// back in their order and writes the result's labels in their label words (result.labels and
-/// result.depth are left empty). The same result otherwise. After an exception the records' order and labels are
-/// unspecified. std::logic_error on unaligned records or a label word overlapping x y z.
-[[nodiscard]] CoreSplitResult core_split(const XyzRecords& records,
-                                         std::uint32_t label_offset,
+                                         std::vector<std::uint32_t> labels,
                                          const CoreSplitParams& params);
 [[nodiscard]] inline CoreSplitResult core_split(const Cloud& cloud,
-                                                std::span<const std::uint32_t> labels,
+                                                std::vector<std::uint32_t> labels,
                                                 const CoreSplitParams& params) {
-    return core_split(XyzView(cloud), labels, params);
+    return core_split(XyzView(cloud), std::move(labels), params);
 }
 
 }  // namespace pc::segmentation

@@ -5,10 +5,6 @@
 
 #include <pc/core/cloud.h>
 
-namespace pc::search {
-class Grid;
-}  // namespace pc::search
-
 namespace pc::segmentation {
 
 /// Label given to points that belong to no cluster.
@@ -33,16 +29,15 @@ struct DbscanResult {
 /// cluster of its nearest core point (ties: the smallest index), so the result does not depend on
 /// visiting order. Clusters are numbered 1..N by decreasing size, ties by smallest point index.
 /// Non-finite points are noise and nobody's neighbour. O(n · neighbours), counting in parallel.
-[[nodiscard]] DbscanResult dbscan(const Cloud& cloud, const DbscanParams& params);
-
-/// The same over a grid already built on the cloud (n points) with cells of at least eps, so
-/// that a caller can free the cloud first (the grid keeps its own sorted copy of the points) or
-/// have the grid sort the cloud in place (Grid::kInPlace).
-[[nodiscard]] DbscanResult dbscan(const search::Grid& grid, std::size_t n, const DbscanParams& params);
-/// The same, taking the grid: its coordinates and cells are freed before the result is
-/// allocated (release_all_but_order), so the result does not add to the clustering's peak. The
-/// grid keeps its order: an in-place grid's restore_order() is still to be called.
-[[nodiscard]] DbscanResult dbscan(search::Grid&& grid, std::size_t n, const DbscanParams& params);
+/// The records may be reordered while it runs (thin records, of at most 16 bytes, are sorted
+/// where they are instead of copied: search::grid_over()); they are back in their order when it
+/// returns or throws.
+[[nodiscard]] DbscanResult dbscan(XyzRecords& points, const DbscanParams& params);
+/// The same over a copy of a pcl cloud (for tests and small clouds).
+[[nodiscard]] inline DbscanResult dbscan(Cloud cloud, const DbscanParams& params) {
+    XyzRecords records(cloud);
+    return dbscan(records, params);
+}
 
 /// eps from the knee of the sorted distances to the (min_points − 1)-th nearest other point (the
 /// core-distance curve), found as the point farthest below the chord (Kneedle), with the curve

@@ -1,8 +1,8 @@
 #pragma once
 
 #include <cstdint>
-#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pc/core/cloud.h>
@@ -54,24 +54,14 @@ struct RecursiveSplitResult {
 /// k-means (k = 2) on x, y, z; both halves are re-examined; no depth limit (a split that leaves a
 /// half empty stops). Label 0 stays noise; non-finite points become noise. Numbering: decreasing
 /// size, ties by smallest point index. Deterministic for a given seed.
+/// `labels` (one per point) is taken by value: moved in, the cores rule frees it early.
 [[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
-                                                   std::span<const std::uint32_t> labels,
-                                                   const RecursiveSplitParams& params);
-/// The same, taking the labels' storage (the cores rule reuses it: core_split()).
-[[nodiscard]] RecursiveSplitResult recursive_split(const XyzView& points,
-                                                   std::vector<std::uint32_t>&& labels,
-                                                   const RecursiveSplitParams& params);
-/// The same over the points' own records, each holding its label in a 4-byte word at byte
-/// `label_offset`, where the result's labels are written (result.labels is left empty). The
-/// cores rule sorts the records where they are and puts them back (core_split() over records:
-/// no copy of the points); the other rules read them.
-[[nodiscard]] RecursiveSplitResult recursive_split(const XyzRecords& records,
-                                                   std::uint32_t label_offset,
+                                                   std::vector<std::uint32_t> labels,
                                                    const RecursiveSplitParams& params);
 [[nodiscard]] inline RecursiveSplitResult recursive_split(const Cloud& cloud,
-                                                          std::span<const std::uint32_t> labels,
+                                                          std::vector<std::uint32_t> labels,
                                                           const RecursiveSplitParams& params) {
-    return recursive_split(XyzView(cloud), labels, params);
+    return recursive_split(XyzView(cloud), std::move(labels), params);
 }
 
 /// Renumbers `labels` (0 = noise kept) as 1..N by decreasing cluster size, ties by smallest point
