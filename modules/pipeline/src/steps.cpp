@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
-#include <pc/search/grid.h>
+#include <pc/search/spacing.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
 

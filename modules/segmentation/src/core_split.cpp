@@ -19,7 +19,9 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/core/radix_sort.h>
 #include <pc/search/grid.h>
+#include <pc/search/spacing.h>
 #include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
@@ -66,7 +68,7 @@ void part_records(XyzRecords& records, std::size_t count, First&& first, bool ba
         const std::uint32_t at = first(i) ? a++ : b++;
         to[back ? at : i] = back ? i : at;
     }
-    search::permute_records(records, to);
+    permute_records(records, to);
 }
 
 /// Puts core_split's per-point arrays (`part`, `depth` and `index`) and the points' records back
@@ -96,10 +98,10 @@ void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::
         }
         return std::span<std::uint32_t>(place);
     };
-    search::permute_records(part.data(), sizeof(std::uint32_t), count_places());
-    search::permute_records(depth.data(), sizeof(float), count_places());
-    search::permute_records(records, count_places());
-    search::permute_records(index.data(), sizeof(std::uint32_t), count_places());
+    permute_records(part.data(), sizeof(std::uint32_t), count_places());
+    permute_records(depth.data(), sizeof(float), count_places());
+    permute_records(records, count_places());
+    permute_records(index.data(), sizeof(std::uint32_t), count_places());
 }
 
 /// The fruit radius from the curvature of hollow surfaces: least-squares spheres through patches

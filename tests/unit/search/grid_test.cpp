@@ -14,6 +14,7 @@
 #include <gtest/gtest.h>
 
 #include <pc/search/grid.h>
+#include <pc/search/spacing.h>
 
 #include "support/clouds.h"
 
@@ -417,38 +418,6 @@ TEST(Grid, MedianSpacingIsTheMedianNearestOtherDistanceOfStridedSamples) {
     const double want = d.size() % 2 ? d[mid] : d[mid] + 0.5 * (d[mid + 1] - d[mid]);
     EXPECT_EQ(median_spacing(c, samples), want);
     EXPECT_EQ(median_spacing(grid, samples), want);
-}
-
-TEST(Grid, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
-    const Cloud c = test::uniform(70000, 1.0f, 35);
-    std::vector<std::uint32_t> to(c.size());
-    std::iota(to.begin(), to.end(), 0u);
-    std::shuffle(to.begin(), to.end(), std::mt19937(5));
-    for (const std::size_t stride : {12u, 16u, 20u, 44u}) {
-        std::vector<std::uint8_t> bytes = records_of(c, stride, 0);
-        const std::vector<std::uint8_t> original = bytes;
-        std::vector<std::uint32_t> places = to;
-        XyzRecords records{bytes.data(), stride, c.size(), 0};
-        permute_records(records, places);
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            ASSERT_EQ(0, std::memcmp(&bytes[to[i] * stride], &original[i * stride], stride)) << "stride " << stride << ", record " << i;
-        }
-        EXPECT_TRUE(std::is_sorted(places.begin(), places.end()));
-    }
-    // An array of 4-byte values, as records of one word.
-    std::vector<std::uint32_t> values(c.size()), places = to;
-    std::iota(values.begin(), values.end(), 0u);
-    permute_records(values.data(), sizeof(std::uint32_t), places);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        ASSERT_EQ(values[to[i]], i);
-    }
-    EXPECT_THROW(permute_records(values.data(), 6, places), std::logic_error);
-    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
-    std::vector<std::uint32_t> short_places(c.size() - 1);
-    XyzRecords too_many{bytes.data(), 16, c.size(), 0};
-    XyzRecords odd_size{bytes.data(), 14, c.size() - 1, 0};
-    EXPECT_THROW(permute_records(too_many, short_places), std::logic_error);
-    EXPECT_THROW(permute_records(odd_size, short_places), std::logic_error);
 }
 
 TEST(Grid, InPlaceSortsFewRecordsWithRepeatedKeys) {

@@ -15,26 +15,6 @@ namespace pc::search {
 /// A uniform grid over the finite points of a cloud, for exact radius and k-nearest-neighbour
 /// queries. Points are stored sorted by cell, so a cell's points are contiguous in memory.
 /// Distances are computed in double from the float coordinates: d² = Σ (a_i − b_i)².
-/// The median distance from a point to its nearest other point (the point spacing), over at most
-/// `samples` finite points taken at a fixed stride (deterministic); 0 with fewer than 2 points or
-/// when the sampled points all coincide with another.
-[[nodiscard]] double median_spacing(const XyzView& points, std::size_t samples = 20000);
-[[nodiscard]] inline double median_spacing(const Cloud& cloud, std::size_t samples = 20000) {
-    return median_spacing(XyzView(cloud), samples);
-}
-
-class Grid;
-/// The same from a grid of cell Grid::suggest_cell(points, 16) over the points (copied, or
-/// sorted in place with Grid::order_cells_by_index(): the samples are taken by sorted position).
-[[nodiscard]] double median_spacing(const Grid& grid, std::size_t samples = 20000);
-
-/// Moves record i to place to[i] in place (`to`: a permutation of 0..size-1; it is left
-/// sorted). Records are whole 4-byte words (std::logic_error otherwise, or on a size mismatch).
-void permute_records(XyzRecords& records, std::span<std::uint32_t> to);
-/// The same for to.size() records of `stride` bytes (a multiple of 4) at `base`: e.g. the
-/// elements of an array of 4-byte values.
-void permute_records(void* base, std::size_t stride, std::span<std::uint32_t> to);
-
 class Grid {
 public:
     Grid(const Grid&) = delete;
