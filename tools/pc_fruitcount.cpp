@@ -35,39 +35,61 @@ int main(int argc, char** argv) {
     tool.option("min-mean", &color.min_mean, "colour: keep iff (R+G+B)/3 > this (0..1)");
     tool.option("min-value", &color.min_value, "colour: keep iff max(R,G,B) > this");
     tool.flag("no-color", &no_color, "skip the colour filter");
-    tool.option("crop-min", "off", [&](const std::string& s) {
-        crop.min = pc::cli::parse_triple("crop-min", s);
-        chain.crop = crop;
-    }, "crop: lower corner x,y,z, included (enables the crop step)");
-    tool.option("crop-max", "off", [&](const std::string& s) {
-        crop.max = pc::cli::parse_triple("crop-max", s);
-        chain.crop = crop;
-    }, "crop: upper corner x,y,z, included (enables the crop step)");
-    tool.option("leaf", "off", [&](const std::string& s) {
-        voxel.leaf = pc::cli::parse_double("leaf", s);
-        chain.voxel = voxel;
-    }, "voxel: leaf size (enables the voxel step)");
+    tool.option(
+        "crop-min", "off",
+        [&](const std::string& s) {
+            crop.min = pc::cli::parse_triple("crop-min", s);
+            chain.crop = crop;
+        },
+        "crop: lower corner x,y,z, included (enables the crop step)");
+    tool.option(
+        "crop-max", "off",
+        [&](const std::string& s) {
+            crop.max = pc::cli::parse_triple("crop-max", s);
+            chain.crop = crop;
+        },
+        "crop: upper corner x,y,z, included (enables the crop step)");
+    tool.option(
+        "leaf", "off",
+        [&](const std::string& s) {
+            voxel.leaf = pc::cli::parse_double("leaf", s);
+            chain.voxel = voxel;
+        },
+        "voxel: leaf size (enables the voxel step)");
     tool.option("k", &knn.k, "kNN outlier: neighbours, the point itself NOT counted");
-    tool.option("drop-percentile", &knn.drop_percentile, "kNN outlier: drop mean distance >= P(100-P)");
-    tool.option("std-mul", &knn.std_mul, "kNN outlier: instead drop mean distance > mean + M sigma");
+    tool.option("drop-percentile", &knn.drop_percentile,
+                "kNN outlier: drop mean distance >= P(100-P)");
+    tool.option("std-mul", &knn.std_mul,
+                "kNN outlier: instead drop mean distance > mean + M sigma");
     tool.flag("no-knn", &no_knn, "skip the kNN outlier filter");
-    tool.option("eps", pl::eps_text(chain.dbscan, chain.eps),
-                [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
-                "DBSCAN: neighbour iff distance <= eps; 'auto' (knee), 'spacing' or 'Nxs' (N x point spacing)");
-    tool.option("min-points", &chain.dbscan.min_points, "DBSCAN: core needs this many, itself included");
-    tool.option("rule", "paper", [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
-                "split: paper, script or cores");
-    tool.option("core-fraction", &split.core_fraction, "split (cores): core depth / estimated fruit radius");
-    tool.option("min-relative-size", &split.min_relative_size, "cores rule: clusters below this x the median cluster size become noise");
+    tool.option(
+        "eps", pl::eps_text(chain.dbscan, chain.eps),
+        [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
+        "DBSCAN: neighbour iff distance <= eps; 'auto' (knee), 'spacing' or 'Nxs' (N x point "
+        "spacing)");
+    tool.option("min-points", &chain.dbscan.min_points,
+                "DBSCAN: core needs this many, itself included");
+    tool.option(
+        "rule", seg::split_rule_name(split.rule),
+        [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
+        "split: paper, script or cores");
+    tool.option("core-fraction", &split.core_fraction,
+                "split (cores): core depth / estimated fruit radius");
+    tool.option("min-relative-size", &split.min_relative_size,
+                "cores rule: clusters below this x the median cluster size become noise");
     tool.option("size-factor", &split.size_factor, "split: points > this x median size");
     tool.option("volume-factor", &split.volume_factor, "split: AABB volume > this x median volume");
-    tool.option("median-min-points", &split.median_min_points, "split (script): size median over clusters with more points");
-    tool.option("size-band", &split.size_band, "split (script): volume median band around the median size");
-    tool.option("min-cluster-size", &split.min_cluster_size, "split: final clusters below this become noise");
+    tool.option("median-min-points", &split.median_min_points,
+                "split (script): size median over clusters with more points");
+    tool.option("size-band", &split.size_band,
+                "split (script): volume median band around the median size");
+    tool.option("min-cluster-size", &split.min_cluster_size,
+                "split: final clusters below this become noise");
     tool.option("restarts", &split.restarts, "split: k-means++ restarts");
     tool.option("seed", &split.seed, "split: k-means seed");
     tool.flag("no-split", &no_split, "skip the recursive split");
-    tool.option("count-min-points", &chain.count_min_points, "count clusters with at least this many points");
+    tool.option("count-min-points", &chain.count_min_points,
+                "count clusters with at least this many points");
     tool.option("gt", &gt, "ground-truth count: adds error and recovery to the report");
     tool.flag("plain", &plain, "print only the count");
     tool.option("cloud", &cloud_out, "also write the labelled cloud (binary PCD) to this file");

@@ -16,15 +16,19 @@ std::array<std::uint8_t, 3> parse_rgb(const std::string& text) {
     std::array<std::uint8_t, 3> out{};
     for (int c = 0; c < 3; ++c) {
         if (!(t[c] >= 0 && t[c] <= 255) || t[c] != static_cast<int>(t[c])) {
-            throw pc::InvalidArgument("--fruit-rgb: channels must be integers 0..255, got '" + text + "'");
+            throw pc::InvalidArgument("--fruit-rgb: channels must be integers 0..255, got '" +
+                                      text + "'");
         }
         out[c] = static_cast<std::uint8_t>(t[c]);
     }
     return out;
 }
 
-std::string truth_json(const std::string& species, const sy::SceneParams& sp, const sy::RenderParams& rp,
-                       const sy::Scene& scene, const sy::Rendered& r) {
+std::string truth_json(const std::string& species,
+                       const sy::SceneParams& sp,
+                       const sy::RenderParams& rp,
+                       const sy::Scene& scene,
+                       const sy::Rendered& r) {
     nlohmann::ordered_json fruits = nlohmann::ordered_json::array();
     std::size_t present = 0;
     for (std::size_t f = 0; f < scene.fruits.size(); ++f) {
@@ -46,7 +50,8 @@ std::string truth_json(const std::string& species, const sy::SceneParams& sp, co
     j["fruit_present"] = present;
     j["bunch_count"] = scene.bunch_count;
     j["points"] = r.xyz.size();
-    j["fruit_points"] = std::accumulate(r.fruit_points.begin(), r.fruit_points.end(), std::uint64_t{0});
+    j["fruit_points"] =
+        std::accumulate(r.fruit_points.begin(), r.fruit_points.end(), std::uint64_t{0});
     j["fruits"] = fruits;
     return j.dump(1) + "\n";
 }
@@ -57,39 +62,54 @@ int main(int argc, char** argv) {
     std::string species = "peach", truth;
     sy::SceneParams sp = sy::species(species);
     sy::RenderParams rp;
-    pc::cli::Tool tool("pc_synth",
-                       "synthetic fruit-tree cloud with ground truth (x y z rgb gt_instance), as an explicit, "
-                       "implicit or degraded reconstruction exports it");
+    pc::cli::Tool tool(
+        "pc_synth",
+        "synthetic fruit-tree cloud with ground truth (x y z rgb gt_instance), as an explicit, "
+        "implicit or degraded reconstruction exports it");
     tool.no_input();
-    tool.option("species", species, [&](const std::string& s) {
-        const auto seed = sp.seed;
-        sp = sy::species(s);  // the species first; flags given after it override its values
-        sp.seed = seed;
-        species = s;
-    }, "peach (152 fruit, separated), apple (283, bunches of 1-3), plum (745, bunches of 3-8 touching)");
-    tool.option("mode", "explicit", [&](const std::string& s) { rp.mode = sy::parse_mode(s); },
-                "explicit (solid voxels), implicit (visible surfaces, NeRF-like), degraded (poor masks)");
+    tool.option(
+        "species", species,
+        [&](const std::string& s) {
+            const auto seed = sp.seed;
+            sp = sy::species(s);  // the species first; flags given after it override its values
+            sp.seed = seed;
+            species = s;
+        },
+        "peach (152 fruit, separated), apple (283, bunches of 1-3), plum (745, bunches of 3-8 "
+        "touching)");
+    tool.option(
+        "mode", sy::mode_name(rp.mode), [&](const std::string& s) { rp.mode = sy::parse_mode(s); },
+        "explicit (solid voxels), implicit (visible surfaces, NeRF-like), degraded (poor masks)");
     tool.option("seed", &sp.seed, "random seed: the same seed gives the same bytes");
-    tool.option("truth", &truth, "also write the fruit (id, centre, radius, bunch, points) as JSON here");
+    tool.option("truth", &truth,
+                "also write the fruit (id, centre, radius, bunch, points) as JSON here");
     tool.option("fruit-count", &sp.fruit_count, "number of fruit (the ground-truth count)");
     tool.option("fruit-radius", &sp.fruit_radius, "mean fruit radius, m");
     tool.option("radius-spread", &sp.radius_spread, "radii uniform in radius x (1 +- this)");
     tool.option("bunch-min", &sp.bunch_min, "least fruit per bunch");
     tool.option("bunch-max", &sp.bunch_max, "most fruit per bunch");
-    tool.option("touch-gap", &sp.touch_gap, "gap between touching fruit of a bunch: uniform in [0, this], m");
+    tool.option("touch-gap", &sp.touch_gap,
+                "gap between touching fruit of a bunch: uniform in [0, this], m");
     tool.option("separation", &sp.separation, "least gap between fruit of different bunches, m");
     tool.option("canopy", &sp.canopy, "half axes of the canopy ellipsoid, m");
-    tool.option("shell", &sp.shell, "bunches sit between this fraction of the canopy radius and its edge");
-    tool.option("leaf-density", &sp.leaf_density, "leaves per m^3 of canopy (occluders; some leak as points)");
+    tool.option("shell", &sp.shell,
+                "bunches sit between this fraction of the canopy radius and its edge");
+    tool.option("leaf-density", &sp.leaf_density,
+                "leaves per m^3 of canopy (occluders; some leak as points)");
     tool.option("leaf-radius", &sp.leaf_radius, "mean leaf radius, m");
-    tool.option("fruit-rgb", "240,165,95", [&](const std::string& s) { sp.fruit_rgb = parse_rgb(s); },
-                "fruit colour R,G,B (0..255); default by species");
+    tool.option(
+        "fruit-rgb", "240,165,95", [&](const std::string& s) { sp.fruit_rgb = parse_rgb(s); },
+        "fruit colour R,G,B (0..255); default by species");
     tool.option("voxel", &rp.voxel, "voxel edge, m: explicit occupancy and surface sampling");
     tool.option("cameras", &rp.cameras, "implicit: cameras on three rings around the canopy");
-    tool.option("min-views", &rp.min_views, "implicit: a surface voxel needs this many cameras seeing it");
-    tool.option("surface-noise", &rp.surface_noise, "implicit: sigma of the point jitter, in voxels");
-    tool.option("bridge-gap", &rp.bridge_gap, "implicit: bridge fruit closer than this x the smaller radius");
-    tool.option("bridge-probability", &rp.bridge_probability, "implicit: chance of a noise bridge per close pair");
+    tool.option("min-views", &rp.min_views,
+                "implicit: a surface voxel needs this many cameras seeing it");
+    tool.option("surface-noise", &rp.surface_noise,
+                "implicit: sigma of the point jitter, in voxels");
+    tool.option("bridge-gap", &rp.bridge_gap,
+                "implicit: bridge fruit closer than this x the smaller radius");
+    tool.option("bridge-probability", &rp.bridge_probability,
+                "implicit: chance of a noise bridge per close pair");
     tool.option("floaters", &rp.floaters, "implicit: floater blobs per fruit");
     tool.option("recall", &rp.recall, "degraded: mean fraction of each fruit kept by the masks");
     tool.option("leaf-leak", &rp.leaf_leak, "fraction of leaves exported as green points");
@@ -100,8 +120,9 @@ int main(int argc, char** argv) {
         rp.seed = sp.seed;
         const sy::Scene scene = sy::make_scene(sp);
         const sy::Rendered r = sy::render(scene, rp);
-        io.note(std::to_string(scene.fruits.size()) + " fruit in " + std::to_string(scene.bunch_count) +
-                " bunches, " + std::to_string(scene.leaves.size()) + " leaves, " + std::to_string(r.xyz.size()) +
+        io.note(std::to_string(scene.fruits.size()) + " fruit in " +
+                std::to_string(scene.bunch_count) + " bunches, " +
+                std::to_string(scene.leaves.size()) + " leaves, " + std::to_string(r.xyz.size()) +
                 " points");
         if (!truth.empty()) {
             pc::cli::write_text_file(truth, truth_json(species, sp, rp, scene, r));

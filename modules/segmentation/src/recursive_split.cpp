@@ -1,5 +1,3 @@
-#include <pc/segmentation/recursive_split.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +7,7 @@
 #include <pc/core/stats.h>
 #include <pc/segmentation/core_split.h>
 #include <pc/segmentation/kmeans.h>
+#include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
 
@@ -47,6 +46,18 @@ SplitRule parse_split_rule(const std::string& text) {
     throw InvalidArgument("--rule: expected paper, script or cores, got '" + text + "'");
 }
 
+std::string split_rule_name(SplitRule rule) {
+    switch (rule) {
+        case SplitRule::kPaper:
+            return "paper";
+        case SplitRule::kScript:
+            return "script";
+        case SplitRule::kCores:
+            return "cores";
+    }
+    return "?";
+}
+
 void RecursiveSplitParams::validate() const {
     if (!(size_factor >= 0) || !(volume_factor >= 0)) {
         throw InvalidArgument("recursive_split: size_factor and volume_factor must be >= 0, got " +
@@ -68,7 +79,8 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
         max_label = std::max(max_label, l);
     }
     std::vector<std::uint32_t> size(std::size_t{max_label} + 1, 0);
-    std::vector<std::uint32_t> first(std::size_t{max_label} + 1, std::numeric_limits<std::uint32_t>::max());
+    std::vector<std::uint32_t> first(std::size_t{max_label} + 1,
+                                     std::numeric_limits<std::uint32_t>::max());
     for (std::uint32_t i = 0; i < labels.size(); ++i) {
         ++size[labels[i]];
         first[labels[i]] = std::min(first[labels[i]], i);
@@ -94,11 +106,13 @@ std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t
 
 namespace {
 
-RecursiveSplitResult by_cores(const XyzView& points, std::vector<std::uint32_t> labels,
+RecursiveSplitResult by_cores(const XyzView& points,
+                              std::vector<std::uint32_t> labels,
                               const RecursiveSplitParams& params) {
-    CoreSplitResult c = core_split(points, std::move(labels), {.core_fraction = params.core_fraction,
-                                                    .min_cluster_size = params.min_cluster_size,
-                                                    .min_relative_size = params.min_relative_size});
+    CoreSplitResult c = core_split(points, std::move(labels),
+                                   {.core_fraction = params.core_fraction,
+                                    .min_cluster_size = params.min_cluster_size,
+                                    .min_relative_size = params.min_relative_size});
     RecursiveSplitResult r;
     r.labels = std::move(c.labels);
     r.cluster_count = c.cluster_count;

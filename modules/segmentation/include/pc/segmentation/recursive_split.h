@@ -20,6 +20,8 @@ enum class SplitRule {
 
 /// Parses "paper", "script" or "cores"; throws pc::InvalidArgument.
 [[nodiscard]] SplitRule parse_split_rule(const std::string& text);
+/// The name parse_split_rule() reads ("paper", "script", "cores"): for --help defaults.
+[[nodiscard]] std::string split_rule_name(SplitRule rule);
 
 /// Parameters of recursive_split(). A cluster is split iff
 /// points > size_factor × median size AND AABB volume > volume_factor × median volume,
@@ -28,13 +30,15 @@ struct RecursiveSplitParams {
     SplitRule rule = SplitRule::kPaper;
     double size_factor = 1.0;    ///< point-count factor (strict >), >= 0
     double volume_factor = 2.0;  ///< AABB-volume factor (strict >), >= 0; paper-sparse uses 5
-    std::uint32_t median_min_points = 20;  ///< script rule: size median over clusters with MORE points
-    double size_band = 0.2;      ///< script rule: volume median over clusters with |n − m| <= band·m
+    std::uint32_t median_min_points =
+        20;                  ///< script rule: size median over clusters with MORE points
+    double size_band = 0.2;  ///< script rule: volume median over clusters with |n − m| <= band·m
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise (0)
-    std::uint32_t restarts = 6;  ///< k-means++ restarts per split (k = 2)
+    std::uint32_t restarts = 6;          ///< k-means++ restarts per split (k = 2)
     std::uint64_t seed = 0;      ///< k-means seed; each cluster's engine also mixes its first index
     double core_fraction = 0.5;  ///< cores rule: core depth as a fraction of the fruit radius
-    double min_relative_size = 0;  ///< cores rule: clusters below this × the median size become noise
+    double min_relative_size =
+        0;  ///< cores rule: clusters below this × the median size become noise
 
     void validate() const;
 };
@@ -42,12 +46,12 @@ struct RecursiveSplitParams {
 struct RecursiveSplitResult {
     std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
     std::uint32_t cluster_count = 0;
-    std::uint32_t splits = 0;       ///< successful k = 2 splits
-    double size_threshold = 0;      ///< points above which a cluster may split
-    double volume_threshold = 0;    ///< AABB volume above which a cluster may split
-    double spacing = 0;             ///< cores rule: median nearest-neighbour distance
-    double fruit_radius = 0;        ///< cores rule: estimated fruit radius
-    double hollow_radius = 0;       ///< cores rule: fruit radius estimated on hollow clusters
+    std::uint32_t splits = 0;     ///< successful k = 2 splits
+    double size_threshold = 0;    ///< points above which a cluster may split
+    double volume_threshold = 0;  ///< AABB volume above which a cluster may split
+    double spacing = 0;           ///< cores rule: median nearest-neighbour distance
+    double fruit_radius = 0;      ///< cores rule: estimated fruit radius
+    double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
 };
 
 /// Recursive geometric splitting (paper 2.3.3): clusters violating both thresholds are split by
