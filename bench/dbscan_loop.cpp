@@ -20,7 +20,8 @@
 namespace {
 
 double seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+        .count();
 }
 
 }  // namespace
@@ -41,13 +42,14 @@ int main(int argc, char** argv) {
         std::uint32_t clusters = 0;
         for (int r = 0; r < runs; ++r) {
             const double t0 = seconds();
-            const auto result = pc::segmentation::dbscan(points.records(), {.eps = eps, .min_points = min_points});
+            const auto result =
+                pc::segmentation::dbscan(points.records(), {.eps = eps, .min_points = min_points});
             t.push_back(seconds() - t0);
             clusters = result.cluster_count;
         }
         std::sort(t.begin(), t.end());
-        std::printf("dbscan min %.1f ms median %.1f ms | %u clusters, %zu points, %d runs\n", t.front() * 1e3,
-                    t[t.size() / 2] * 1e3, clusters, blob.size(), runs);
+        std::printf("dbscan min %.1f ms median %.1f ms | %u clusters, %zu points, %d runs\n",
+                    t.front() * 1e3, t[t.size() / 2] * 1e3, clusters, blob.size(), runs);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "dbscan_loop: %s\n", e.what());
         return 1;

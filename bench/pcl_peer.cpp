@@ -12,6 +12,7 @@
 #include <string>
 
 #include <omp.h>
+
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/kdtree/kdtree_flann.h>
@@ -24,7 +25,9 @@ using Clock = std::chrono::steady_clock;
 
 namespace {
 
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 Cloud::Ptr load(const char* path) {
     Cloud::Ptr c(new Cloud);
@@ -86,7 +89,8 @@ int main(int argc, char** argv) {
             std::vector<float> d2(k + 1);
 #pragma omp for schedule(static)
             for (std::int64_t i = 0; i < static_cast<std::int64_t>(c->size()); ++i) {
-                const int found = tree.nearestKSearch((*c)[i], k + 1, idx, d2);  // includes the point
+                const int found =
+                    tree.nearestKSearch((*c)[i], k + 1, idx, d2);  // includes the point
                 double s = 0;
                 for (int j = 1; j < found; ++j) {
                     s += std::sqrt(d2[j]);

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-    build-essential cmake ninja-build ccache pkg-config
+    build-essential cmake ninja-build ccache pkg-config clang-format-14
     libpcl-dev libflann-dev libeigen3-dev libqhull-dev
     libboost-program-options-dev libgtest-dev libgmock-dev
     nlohmann-json3-dev libopencv-dev

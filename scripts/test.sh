@@ -4,6 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
+bash scripts/check_format.sh
 bash scripts/build.sh ON
 ctest --test-dir build --output-on-failure -j2
 if [ "${CI:-}" = "true" ] || [ "${PC_SANITIZE_RUN:-}" = "1" ]; then

@@ -8,7 +8,8 @@ int main(int argc, char** argv) {
     pc::filters::ColorFilterParams p;
     pc::cli::Tool tool("pc_colorfilter", "keep points by colour (rgb/rgba or red green blue)");
     const auto interval = [&](const char* name, std::optional<pc::filters::Interval>* field) {
-        return [name, field](const std::string& s) { *field = pc::filters::parse_interval(name, s); };
+        return
+            [name, field](const std::string& s) { *field = pc::filters::parse_interval(name, s); };
     };
     tool.option("min-mean", &p.min_mean, "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
     tool.option("min-value", &p.min_value, "keep iff HSV value max(R,G,B) > this (strict >)");

@@ -14,8 +14,8 @@ namespace pf = pc::features;
 namespace {
 
 nlohmann::ordered_json stats_json(const pf::DirectionStats& s) {
-    return {{"points", s.points}, {"mean", s.mean},     {"median", s.median},
-            {"rms", s.rms},       {"max", s.max},       {"within_tau", s.within_tau}};
+    return {{"points", s.points}, {"mean", s.mean}, {"median", s.median},
+            {"rms", s.rms},       {"max", s.max},   {"within_tau", s.within_tau}};
 }
 
 }  // namespace
@@ -28,16 +28,21 @@ int main(int argc, char** argv) {
                        "compare cloud A (reconstruction) with B (reference): distances both ways, "
                        "accuracy, completeness, F-score at tau, interior coverage",
                        pc::cli::Output::kText);
-    tool.inputs(&inputs, "A B: the reconstruction, then the reference (A from -i or stdin if only "
-                         "B is given)", 2);
-    tool.option("tau", &p.tau, "distance threshold: a point counts if its nearest neighbour is <= tau");
-    tool.option("voxel", &p.voxel, "voxel side for interior coverage (grid anchored at the origin)");
+    tool.inputs(&inputs,
+                "A B: the reconstruction, then the reference (A from -i or stdin if only "
+                "B is given)",
+                2);
+    tool.option("tau", &p.tau,
+                "distance threshold: a point counts if its nearest neighbour is <= tau");
+    tool.option("voxel", &p.voxel,
+                "voxel side for interior coverage (grid anchored at the origin)");
     tool.flag("csv", &csv, "one CSV row instead of JSON");
     tool.flag("markdown", &markdown, "a markdown table instead of JSON");
     tool.epilog("\nDefinitions in docs/tools/pc_compare.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         if (inputs.size() != 2) {
-            throw pc::InvalidArgument("expected two inputs A B, got " + std::to_string(inputs.size()));
+            throw pc::InvalidArgument("expected two inputs A B, got " +
+                                      std::to_string(inputs.size()));
         }
         if (csv && markdown) {
             throw pc::InvalidArgument("--csv and --markdown exclude each other");
@@ -48,8 +53,10 @@ int main(int argc, char** argv) {
         const pf::CompareResult r = pf::compare(a, b, p);
         std::ostringstream out;
         if (csv) {
-            out << "a,b,tau,voxel,a_points,b_points,a_to_b_mean,a_to_b_median,a_to_b_rms,a_to_b_max,"
-                   "b_to_a_mean,b_to_a_median,b_to_a_rms,b_to_a_max,chamfer,precision,recall,fscore,"
+            out << "a,b,tau,voxel,a_points,b_points,a_to_b_mean,a_to_b_median,a_to_b_rms,a_to_b_"
+                   "max,"
+                   "b_to_a_mean,b_to_a_median,b_to_a_rms,b_to_a_max,chamfer,precision,recall,"
+                   "fscore,"
                    "interior_coverage\n";
             out << pc::io::display_name(inputs[0]) << ',' << pc::io::display_name(inputs[1]);
             for (double v : {p.tau, p.voxel, double(r.a_to_b.points), double(r.b_to_a.points),
@@ -62,9 +69,12 @@ int main(int argc, char** argv) {
         } else if (markdown) {
             out << "| metric | value |\n| --- | ---: |\n";
             const std::pair<const char*, double> rows[] = {
-                {"A→B mean distance", r.a_to_b.mean}, {"B→A mean distance", r.b_to_a.mean},
-                {"chamfer", r.chamfer},                {"accuracy (precision)", r.precision},
-                {"completeness (recall)", r.recall},   {"F-score", r.fscore},
+                {"A→B mean distance", r.a_to_b.mean},
+                {"B→A mean distance", r.b_to_a.mean},
+                {"chamfer", r.chamfer},
+                {"accuracy (precision)", r.precision},
+                {"completeness (recall)", r.recall},
+                {"F-score", r.fscore},
                 {"interior coverage", r.interior_coverage}};
             for (const auto& [name, v] : rows) {
                 char buf[32];

@@ -11,7 +11,8 @@ int main(int argc, char** argv) {
     bool plain = false;
     pc::cli::Tool tool("pc_count", "count the clusters in `label` (0 = noise) and report them",
                        pc::cli::Output::kText);
-    tool.option("min-cluster-size", &min_points, "count only clusters with at least this many points");
+    tool.option("min-cluster-size", &min_points,
+                "count only clusters with at least this many points");
     tool.option("gt", &gt, "ground-truth count: adds error (count - gt) and recovery (count / gt)");
     tool.flag("plain", &plain, "print only the count");
     tool.presets(pl::preset_names(),

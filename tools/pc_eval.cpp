@@ -23,7 +23,8 @@ struct Truth {
     std::size_t fruit_count = 0;
 };
 
-/// Reads {"fruit_count": N, "fruits": [{"id", "centre": [x, y, z], "radius"}, ...]} (pc_synth --truth).
+/// Reads {"fruit_count": N, "fruits": [{"id", "centre": [x, y, z], "radius"}, ...]} (pc_synth
+/// --truth).
 Truth read_truth(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) {
@@ -37,12 +38,14 @@ Truth read_truth(const std::string& path) {
             fr.id = x.at("id").get<std::uint32_t>();
             fr.centre = x.at("centre").get<std::array<double, 3>>();
             fr.radius = x.at("radius").get<double>();
-            if (fr.id == 0 || !(fr.radius > 0) || !std::isfinite(fr.centre[0] + fr.centre[1] + fr.centre[2])) {
+            if (fr.id == 0 || !(fr.radius > 0) ||
+                !std::isfinite(fr.centre[0] + fr.centre[1] + fr.centre[2])) {
                 throw pc::IoError("fruit ids must be > 0, radii > 0 and centres finite");
             }
             t.fruits.push_back(fr);
         }
-        t.fruit_count = j.contains("fruit_count") ? j.at("fruit_count").get<std::size_t>() : t.fruits.size();
+        t.fruit_count =
+            j.contains("fruit_count") ? j.at("fruit_count").get<std::size_t>() : t.fruits.size();
     } catch (const nlohmann::json::exception& e) {
         throw pc::IoError(path + ": not a ground-truth file (" + std::string(e.what()) + ")");
     } catch (const pc::IoError& e) {
@@ -60,19 +63,27 @@ int main(int argc, char** argv) {
     std::string truth_path, label_field = "label", gt_field = "gt_instance", match = "auto", name;
     std::optional<double> gt;
     bool csv = false, markdown = false;
-    pc::cli::Tool tool("pc_eval",
-                       "score a labelled cloud against ground truth: count, recovery, one-to-one matching, "
-                       "precision, recall, F1, merged clusters, split fruit",
-                       pc::cli::Output::kText);
-    tool.option("truth", &truth_path, "ground truth JSON (pc_synth --truth): fruit count, centres, radii");
+    pc::cli::Tool tool(
+        "pc_eval",
+        "score a labelled cloud against ground truth: count, recovery, one-to-one matching, "
+        "precision, recall, F1, merged clusters, split fruit",
+        pc::cli::Output::kText);
+    tool.option("truth", &truth_path,
+                "ground truth JSON (pc_synth --truth): fruit count, centres, radii");
     tool.option("label", &label_field, "field with the predicted instances (0 = noise)");
     tool.option("gt-field", &gt_field, "field with the true instance per point (0 = not fruit)");
-    tool.option("match", &match, "auto (overlap when the cloud has --gt-field, else centroid), overlap, centroid");
-    tool.option("min-iou", &params.min_iou, "overlap: a prediction matches a fruit when IoU > this (>= 0.5)");
-    tool.option("share", &params.share, "merge/split: more than this share of a fruit / of a prediction");
-    tool.option("radius-factor", &params.radius_factor, "centroid: match within this x the fruit radius");
-    tool.option("min-cluster-size", &params.min_points, "predictions with fewer points count as noise");
-    tool.option("gt", &gt, "ground-truth count (default: --truth's fruit_count, else the ids present)");
+    tool.option("match", &match,
+                "auto (overlap when the cloud has --gt-field, else centroid), overlap, centroid");
+    tool.option("min-iou", &params.min_iou,
+                "overlap: a prediction matches a fruit when IoU > this (>= 0.5)");
+    tool.option("share", &params.share,
+                "merge/split: more than this share of a fruit / of a prediction");
+    tool.option("radius-factor", &params.radius_factor,
+                "centroid: match within this x the fruit radius");
+    tool.option("min-cluster-size", &params.min_points,
+                "predictions with fewer points count as noise");
+    tool.option("gt", &gt,
+                "ground-truth count (default: --truth's fruit_count, else the ids present)");
     tool.option("name", &name, "row name in the report (default: the input's name)");
     tool.flag("csv", &csv, "one CSV row with a header instead of JSON");
     tool.flag("markdown", &markdown, "a markdown table row with a header instead of JSON");
@@ -85,7 +96,8 @@ int main(int argc, char** argv) {
             throw pc::InvalidArgument("--csv and --markdown exclude each other");
         }
         if (match != "auto" && match != "overlap" && match != "centroid") {
-            throw pc::InvalidArgument("--match must be auto, overlap or centroid, got '" + match + "'");
+            throw pc::InvalidArgument("--match must be auto, overlap or centroid, got '" + match +
+                                      "'");
         }
         if (gt && (!(*gt >= 0) || *gt != std::floor(*gt) || *gt > 1e12)) {
             throw pc::InvalidArgument("--gt must be a whole number >= 0");
@@ -99,7 +111,8 @@ int main(int argc, char** argv) {
             if (match == "centroid") {
                 throw pc::InvalidArgument("--match centroid needs --truth");
             }
-            throw pc::IoError(input + ": no '" + gt_field + "' field (give --truth to match by centroid)");
+            throw pc::IoError(input + ": no '" + gt_field +
+                              "' field (give --truth to match by centroid)");
         }
         const Truth truth = truth_path.empty() ? Truth{} : read_truth(truth_path);
         const auto labels = [&](const std::string& field) {
@@ -124,14 +137,17 @@ int main(int argc, char** argv) {
         const std::size_t fp = s.count - s.true_positives, missed = s.gt_count - s.true_positives;
         std::ostringstream out;
         if (csv) {
-            out << "name,match,count,gt_count,recovery,true_positives,false_positives,missed,precision,recall,f1,"
+            out << "name,match,count,gt_count,recovery,true_positives,false_positives,missed,"
+                   "precision,recall,f1,"
                    "merged,split\n"
-                << row << ',' << mode << ',' << s.count << ',' << s.gt_count << ',' << num(s.recovery) << ','
-                << s.true_positives << ',' << fp << ',' << missed << ',' << num(s.precision) << ','
-                << num(s.recall) << ',' << num(s.f1) << ',' << s.merged.size() << ',' << s.split.size() << '\n';
+                << row << ',' << mode << ',' << s.count << ',' << s.gt_count << ','
+                << num(s.recovery) << ',' << s.true_positives << ',' << fp << ',' << missed << ','
+                << num(s.precision) << ',' << num(s.recall) << ',' << num(s.f1) << ','
+                << s.merged.size() << ',' << s.split.size() << '\n';
         } else if (markdown) {
             char buf[256];
-            std::snprintf(buf, sizeof buf, "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n",
+            std::snprintf(buf, sizeof buf,
+                          "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n",
                           row.c_str(), s.count, s.gt_count, s.recovery, s.precision, s.recall, s.f1,
                           s.merged.size(), s.split.size());
             out << "| Cloud | Count | GT | Recovery | Precision | Recall | F1 | Merged | Split |\n"
@@ -144,7 +160,8 @@ int main(int argc, char** argv) {
             j["match"] = mode;
             j["count"] = s.count;
             j["gt_count"] = s.gt_count;
-            j["recovery"] = std::isfinite(s.recovery) ? ordered_json(s.recovery) : ordered_json(nullptr);
+            j["recovery"] =
+                std::isfinite(s.recovery) ? ordered_json(s.recovery) : ordered_json(nullptr);
             j["true_positives"] = s.true_positives;
             j["false_positives"] = fp;
             j["missed"] = missed;
@@ -157,9 +174,13 @@ int main(int argc, char** argv) {
             j["split_fruit"] = s.split;
             ordered_json m = ordered_json::array();
             for (const auto& x : s.matches) {
-                m.push_back(mode == "overlap"
-                                ? ordered_json{{"label", x.label}, {"fruit", x.fruit}, {"points", x.overlap}, {"iou", x.iou}}
-                                : ordered_json{{"label", x.label}, {"fruit", x.fruit}, {"distance", x.overlap}});
+                m.push_back(mode == "overlap" ? ordered_json{{"label", x.label},
+                                                             {"fruit", x.fruit},
+                                                             {"points", x.overlap},
+                                                             {"iou", x.iou}}
+                                              : ordered_json{{"label", x.label},
+                                                             {"fruit", x.fruit},
+                                                             {"distance", x.overlap}});
             }
             j["matches"] = m;
             out << j.dump(1) << '\n';

@@ -25,7 +25,9 @@ struct Row {
 };
 
 ordered_json extent_json(const Extent& e) {
-    const auto num = [](double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); };
+    const auto num = [](double v) {
+        return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr);
+    };
     ordered_json j;
     j["points"] = e.points;
     if (e.points == 0) {
@@ -47,7 +49,8 @@ ordered_json extent_json(const Extent& e) {
 
 ordered_json spread(std::vector<double> v) {
     std::vector<double> a = v, b = v, c = v;
-    const double q1 = pc::percentile(a, 25), med = pc::percentile(b, 50), q3 = pc::percentile(c, 75);
+    const double q1 = pc::percentile(a, 25), med = pc::percentile(b, 50),
+                 q3 = pc::percentile(c, 75);
     if (v.empty()) {
         return nullptr;
     }
@@ -121,14 +124,16 @@ int main(int argc, char** argv) {
             const pc::XyzView& cloud = points.view();
             Row r;
             r.input = pc::io::display_name(inputs[k]);
-            r.name = names.empty() ? (inputs[k] == "-" ? r.input
-                                                       : std::filesystem::path(inputs[k]).stem().string())
-                                   : names[k];
+            r.name = names.empty()
+                         ? (inputs[k] == "-" ? r.input
+                                             : std::filesystem::path(inputs[k]).stem().string())
+                         : names[k];
             r.whole = pc::features::extent(cloud);
             if (per_label) {
                 try {
                     r.clusters = pc::features::extent_per_label(
-                        cloud, blob.size() ? pc::io::labels(blob, "label") : std::vector<std::uint32_t>{});
+                        cloud,
+                        blob.size() ? pc::io::labels(blob, "label") : std::vector<std::uint32_t>{});
                 } catch (const pc::IoError& e) {
                     throw pc::IoError(r.input + ": " + e.what());  // name the input, as readers do
                 }
@@ -137,7 +142,8 @@ int main(int argc, char** argv) {
         }
         std::ostringstream out;
         if (csv) {
-            out << "name,label,points,centroid_x,centroid_y,centroid_z,min_x,min_y,min_z,max_x,max_y,"
+            out << "name,label,points,centroid_x,centroid_y,centroid_z,min_x,min_y,min_z,max_x,max_"
+                   "y,"
                    "max_z,aabb_volume,hull_volume,hull_area,mean_radius,max_radius,"
                    "equivalent_diameter,degenerate\n";
             for (const auto& r : rows) {
@@ -147,10 +153,13 @@ int main(int argc, char** argv) {
                 }
             }
         } else if (markdown) {
-            out << "| Model | Points | Convex hull volume | Mean radius | Max radius | AABB volume |"
-                << (per_label ? " Clusters | Median cluster hull volume | Median cluster mean radius |" : "")
-                << "\n| --- | ---: | ---: | ---: | ---: | ---: |" << (per_label ? " ---: | ---: | ---: |" : "")
-                << '\n';
+            out << "| Model | Points | Convex hull volume | Mean radius | Max radius | AABB volume "
+                   "|"
+                << (per_label
+                        ? " Clusters | Median cluster hull volume | Median cluster mean radius |"
+                        : "")
+                << "\n| --- | ---: | ---: | ---: | ---: | ---: |"
+                << (per_label ? " ---: | ---: | ---: |" : "") << '\n';
             for (const auto& r : rows) {
                 const Extent& e = r.whole;
                 out << "| " << r.name << " | " << e.points << " | " << g6(e.hull_volume) << " | "

@@ -14,7 +14,9 @@ using nlohmann::ordered_json;
 
 ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
 
-ordered_json to_json(const pc::io::CloudInfo& info, const std::string& input, const std::string& fmt) {
+ordered_json to_json(const pc::io::CloudInfo& info,
+                     const std::string& input,
+                     const std::string& fmt) {
     ordered_json j;
     j["input"] = input;
     j["format"] = fmt;
@@ -83,9 +85,9 @@ std::string to_csv(const pc::io::CloudInfo& info) {
 
 std::string to_text(const pc::io::CloudInfo& info, const std::string& fmt) {
     std::ostringstream out;
-    out << "format " << fmt << "\npoints " << info.points << "\nwidth " << info.width
-        << "\nheight " << info.height << "\nnon_finite_points " << info.non_finite_points
-        << "\ncolour " << (info.colour.empty() ? "none" : info.colour) << "\nfields";
+    out << "format " << fmt << "\npoints " << info.points << "\nwidth " << info.width << "\nheight "
+        << info.height << "\nnon_finite_points " << info.non_finite_points << "\ncolour "
+        << (info.colour.empty() ? "none" : info.colour) << "\nfields";
     for (const auto& f : info.fields) {
         out << ' ' << f.name;
     }

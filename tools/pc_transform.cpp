@@ -44,20 +44,23 @@ int main(int argc, char** argv) {
     tool.option("translate", &translate, "translation x,y,z");
     tool.flag("inverse", &inverse, "apply the inverse of the fixed transform above");
     tool.flag("center", &spec.center, "then move the centroid of the finite points to the origin");
-    tool.option("normalize", "none",
-                [&](const std::string& s) {
-                    if (s == "none") {
-                        spec.normalize = pl::TransformSpec::Normalize::kNone;
-                    } else if (s == "mean-radius") {
-                        spec.normalize = pl::TransformSpec::Normalize::kMeanRadius;
-                    } else if (s == "diagonal") {
-                        spec.normalize = pl::TransformSpec::Normalize::kDiagonal;
-                    } else {
-                        throw pc::InvalidArgument("--normalize: expected none, mean-radius or "
-                                                  "diagonal, got '" + s + "'");
-                    }
-                },
-                "then scale about the centroid to unit mean radius or unit bounding-box diagonal");
+    tool.option(
+        "normalize", "none",
+        [&](const std::string& s) {
+            if (s == "none") {
+                spec.normalize = pl::TransformSpec::Normalize::kNone;
+            } else if (s == "mean-radius") {
+                spec.normalize = pl::TransformSpec::Normalize::kMeanRadius;
+            } else if (s == "diagonal") {
+                spec.normalize = pl::TransformSpec::Normalize::kDiagonal;
+            } else {
+                throw pc::InvalidArgument(
+                    "--normalize: expected none, mean-radius or "
+                    "diagonal, got '" +
+                    s + "'");
+            }
+        },
+        "then scale about the centroid to unit mean radius or unit bounding-box diagonal");
     tool.epilog("\nSee docs/tools/pc_transform.md for the conventions.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pf::Matrix4 m = pf::Matrix4::Identity();
@@ -68,7 +71,8 @@ int main(int argc, char** argv) {
         if (!matrix_text.empty()) {
             const bool is_file = std::filesystem::is_regular_file(matrix_text);
             m = pf::parse_matrix(is_file ? slurp_file(matrix_text, "matrix") : matrix_text,
-                                 "--matrix") * m;
+                                 "--matrix") *
+                m;
         }
         if (!(scale > 0) || !std::isfinite(scale)) {
             throw pc::InvalidArgument("--scale must be > 0, got " + pc::format_number(scale));
@@ -79,10 +83,12 @@ int main(int argc, char** argv) {
         if (!rotate_text.empty()) {
             const auto comma = rotate_text.rfind(',');
             if (comma == std::string::npos) {
-                throw pc::InvalidArgument("--rotate: expected AX,AY,AZ,DEG, got '" + rotate_text + "'");
+                throw pc::InvalidArgument("--rotate: expected AX,AY,AZ,DEG, got '" + rotate_text +
+                                          "'");
             }
             const auto axis = pc::cli::parse_triple("rotate", rotate_text.substr(0, comma));
-            m = pf::rotation(axis, pc::cli::parse_double("rotate", rotate_text.substr(comma + 1))) * m;
+            m = pf::rotation(axis, pc::cli::parse_double("rotate", rotate_text.substr(comma + 1))) *
+                m;
         }
         pf::Matrix4 t = pf::Matrix4::Identity();
         t.topRightCorner<3, 1>() = Eigen::Vector3d(translate[0], translate[1], translate[2]);

@@ -7,7 +7,8 @@ namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
     pc::filters::VoxelParams p;
-    pc::cli::Tool tool("pc_voxel", "one point per occupied voxel: centroid, mean colour, majority labels");
+    pc::cli::Tool tool("pc_voxel",
+                       "one point per occupied voxel: centroid, mean colour, majority labels");
     tool.option("leaf", &p.leaf, "voxel side, cloud units (> 0)");
     tool.presets(pl::preset_names(), [&](const std::string& name) {
         const auto v = pl::preset(name).voxel;
@@ -16,8 +17,9 @@ int main(int argc, char** argv) {
         }
         p = *v;
     });
-    tool.epilog("\nGrid origin half a leaf below the minimum, as Open3D's voxel_down_sample.\n"
-                "See docs/tools/pc_voxel.md.\n");
+    tool.epilog(
+        "\nGrid origin half a leaf below the minimum, as Open3D's voxel_down_sample.\n"
+        "See docs/tools/pc_voxel.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pl::Step s = pl::apply_voxel(io.read(), p);
         io.note(s.note);

@@ -45,7 +45,8 @@ TEST(Chain, FruitcountGivesTheSameLabelsAsThePipedChain) {
         const io::Blob a = io::parse_cloud(piped.out).blob;
         const io::Blob b = io::read_cloud(dir.file("l.pcd")).blob;
         EXPECT_EQ(a.cloud.data, b.cloud.data) << preset;  // every field, every point, every bit
-        const RunResult count = run_shell("@pc_count --plain --preset " + preset + " -i " + dir.file("l.pcd"));
+        const RunResult count =
+            run_shell("@pc_count --plain --preset " + preset + " -i " + dir.file("l.pcd"));
         EXPECT_EQ(count.out, one.out) << preset;
     }
 }
@@ -59,7 +60,8 @@ TEST(Chain, FruitcountReportsErrorAndRecoveryAgainstGroundTruth) {
     EXPECT_EQ(j["recovery"], 1.0);
     ASSERT_EQ(j["clusters"].size(), 12u);
     // Every cluster centroid lies within one fruit radius of a true centre.
-    const auto truth = nlohmann::json::parse(slurp(std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.json"));
+    const auto truth =
+        nlohmann::json::parse(slurp(std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.json"));
     const double radius = truth["radius"];
     for (const auto& c : j["clusters"]) {
         double best = 1e9;
@@ -82,7 +84,9 @@ TEST(Chain, FieldsPassThroughTheWholeChain) {
 }
 
 TEST(PcDbscan, EpsAutoReportsTheChosenValueWithVerbose) {
-    const RunResult r = run_shell("@pc_convert -i " + kSample + " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto --min-points 4 -v | @pc_count --plain");
+    const RunResult r = run_shell("@pc_convert -i " + kSample +
+                                  " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto "
+                                  "--min-points 4 -v | @pc_count --plain");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps auto (knee) = "), std::string::npos) << r.err;
 }
@@ -95,15 +99,19 @@ TEST(PcDbscan, BadEpsIsAUsageError) {
 }
 
 TEST(PcColorfilter, CloudWithoutColourIsAClearError) {
-    const RunResult r = run_shell("@pc_colorfilter --min-mean 0.5", xyz_header("1", "ascii") + "1 2 3\n");
+    const RunResult r =
+        run_shell("@pc_colorfilter --min-mean 0.5", xyz_header("1", "ascii") + "1 2 3\n");
     EXPECT_EQ(r.code, 1);
-    EXPECT_EQ(r.err, "pc_colorfilter: error: cloud has no colour (looked for rgb, rgba, red green "
-                     "blue, r g b)\n");
+    EXPECT_EQ(r.err,
+              "pc_colorfilter: error: cloud has no colour (looked for rgb, rgba, red green "
+              "blue, r g b)\n");
 }
 
 TEST(PcColorfilter, InvertSplitsTheCloudIntoComplements) {
-    const RunResult a = run_shell("@pc_colorfilter --min-mean 0.5 -i " + kSample + " | @pc_info --text");
-    const RunResult b = run_shell("@pc_colorfilter --min-mean 0.5 --invert -i " + kSample + " | @pc_info --text");
+    const RunResult a =
+        run_shell("@pc_colorfilter --min-mean 0.5 -i " + kSample + " | @pc_info --text");
+    const RunResult b =
+        run_shell("@pc_colorfilter --min-mean 0.5 --invert -i " + kSample + " | @pc_info --text");
     const auto points = [](const std::string& s) {
         return std::stoul(s.substr(s.find("points ") + 7));
     };
@@ -123,10 +131,14 @@ TEST(PcKnnOutlier, MarkAddsAFieldAndDropsNothing) {
 TEST(PcCrop, PaperPresetHasNoCropAndInvnerfsegHasOne) {
     EXPECT_EQ(run_shell("@pc_crop --preset paper-dense -i " + kSample).code, 2);
     // The sample spans +-0.6 in x and y; the script's box keeps +-0.5, so some points go.
-    const RunResult in = run_shell("@pc_crop --preset invnerfseg -i " + kSample + " | @pc_info --text");
-    const RunResult out = run_shell("@pc_crop --preset invnerfseg --invert -i " + kSample + " | @pc_info --text");
+    const RunResult in =
+        run_shell("@pc_crop --preset invnerfseg -i " + kSample + " | @pc_info --text");
+    const RunResult out =
+        run_shell("@pc_crop --preset invnerfseg --invert -i " + kSample + " | @pc_info --text");
     ASSERT_EQ(in.code, 0) << in.err;
-    const auto points = [](const std::string& s) { return std::stoul(s.substr(s.find("points ") + 7)); };
+    const auto points = [](const std::string& s) {
+        return std::stoul(s.substr(s.find("points ") + 7));
+    };
     EXPECT_GT(points(out.out), 0u);
     EXPECT_EQ(points(in.out) + points(out.out), 5640u);
 }
@@ -135,10 +147,10 @@ TEST(PcCount, EmptyCloudCountsZeroAndGroundTruthAddsRecovery) {
     const RunResult empty = run_shell("@pc_count --plain", xyz_header("0", "binary"));
     EXPECT_EQ(empty.code, 0) << empty.err;
     EXPECT_EQ(empty.out, "0\n");
-    const RunResult r = run_shell(
-        "@pc_count --gt 4",
-        pcd_header("x y z label", "4 4 4 4", "F F F U", "1 1 1 1", "3", "3", "ascii") +
-            "0 0 0 1\n1 0 0 2\n2 0 0 0\n");
+    const RunResult r =
+        run_shell("@pc_count --gt 4",
+                  pcd_header("x y z label", "4 4 4 4", "F F F U", "1 1 1 1", "3", "3", "ascii") +
+                      "0 0 0 1\n1 0 0 2\n2 0 0 0\n");
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["count"], 2);
     EXPECT_EQ(j["recovery"], 0.5);
@@ -162,10 +174,13 @@ TEST(Chain, DensePresetCountsTheSameAfterScalingAndRotating) {
         if (name == "plum_bunches_explicit") {
             EXPECT_EQ(base.out, "60\n");  // all 60 plums of 10 touching bunches
         } else {
-            EXPECT_NEAR(std::stoi(base.out), 60, 2);  // hollow: the size from the surfaces' curvature
+            EXPECT_NEAR(std::stoi(base.out), 60,
+                        2);  // hollow: the size from the surfaces' curvature
         }
-        for (const std::string t : {"--scale 0.25", "--scale 4", "--rotate 1,2,3,40", "--rotate 0,0,1,45"}) {
-            const RunResult r = run_shell("@pc_transform " + t + " -i " + in + " | @pc_fruitcount --plain");
+        for (const std::string t :
+             {"--scale 0.25", "--scale 4", "--rotate 1,2,3,40", "--rotate 0,0,1,45"}) {
+            const RunResult r =
+                run_shell("@pc_transform " + t + " -i " + in + " | @pc_fruitcount --plain");
             ASSERT_EQ(r.code, 0) << r.err;
             EXPECT_EQ(r.out, base.out) << name << " " << t;
         }

@@ -77,7 +77,8 @@ TEST_P(Contract, VersionExitsZero) {
 }
 
 TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
-    const RunResult r = run_shell("@" + GetParam() + " --bogus" + extra_args(GetParam()), valid_cloud());
+    const RunResult r =
+        run_shell("@" + GetParam() + " --bogus" + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
     EXPECT_EQ(r.err.rfind(GetParam() + ": error: ", 0), 0u) << r.err;
@@ -86,7 +87,8 @@ TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
 
 TEST_P(Contract, UnparsableValueIsAUsageError) {
     const std::string option = generator(GetParam()) ? " --seed lots" : " --max-input-bytes lots";
-    const RunResult r = run_shell("@" + GetParam() + option + extra_args(GetParam()), valid_cloud());
+    const RunResult r =
+        run_shell("@" + GetParam() + option + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 2);
     EXPECT_EQ(line_count(r.err), 1) << r.err;
 }
@@ -120,9 +122,9 @@ TEST_P(Contract, EveryMalformedInputFailsCleanlyByPathAndByPipe) {
         spit(in, m.bytes);
         const std::string out = dir.file("out.pcd");
         for (const bool by_path : {true, false}) {
-            const std::string cmd =
-                (by_path ? "@" + GetParam() + " -i " + in + " -o " + out
-                         : "cat " + in + " | @" + GetParam() + " -o " + out) + extra_args(GetParam());
+            const std::string cmd = (by_path ? "@" + GetParam() + " -i " + in + " -o " + out
+                                             : "cat " + in + " | @" + GetParam() + " -o " + out) +
+                                    extra_args(GetParam());
             const RunResult r = run_shell("timeout 10 sh -c '" + memory_cap(4000000) + cmd + "'");
             EXPECT_EQ(r.code, 1) << m.name << (by_path ? " by path: " : " by pipe: ") << r.err;
             EXPECT_EQ(line_count(r.err), 1) << m.name << ": " << r.err;
@@ -166,8 +168,9 @@ TEST_P(Contract, HasADocPage) {
     EXPECT_TRUE(std::filesystem::exists(std::string(PC_DOCS_DIR) + "/tools/" + GetParam() + ".md"));
 }
 
-INSTANTIATE_TEST_SUITE_P(Tools, Contract, ::testing::ValuesIn(all_tools()),
-                         [](const auto& p) { return p.param; });
+INSTANTIATE_TEST_SUITE_P(Tools, Contract, ::testing::ValuesIn(all_tools()), [](const auto& p) {
+    return p.param;
+});
 
 }  // namespace
 }  // namespace pc::test

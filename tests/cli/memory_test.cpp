@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include <gtest/gtest.h>
 
 #include <pc/io/points.h>
 #include <pc/io/read.h>
@@ -28,7 +28,9 @@ namespace pc::test {
 namespace {
 
 /// Peak resident memory of `tool args... -i input -o /dev/null`, in bytes; -1 when it failed.
-long long peak_rss(const std::string& tool, std::vector<std::string> args, const std::string& input) {
+long long peak_rss(const std::string& tool,
+                   std::vector<std::string> args,
+                   const std::string& input) {
     args.insert(args.begin(), tool_path(tool));
     args.insert(args.end(), {"-i", input, "-o", "/dev/null", "-q"});
     std::vector<char*> argv;
@@ -43,7 +45,8 @@ long long peak_rss(const std::string& tool, std::vector<std::string> args, const
     }
     int status = 0;
     rusage usage{};
-    if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    if (pid < 0 || ::wait4(pid, &status, 0, &usage) != pid || !WIFEXITED(status) ||
+        WEXITSTATUS(status) != 0) {
         return -1;
     }
     return static_cast<long long>(usage.ru_maxrss) * 1024;  // KiB on Linux
@@ -58,14 +61,17 @@ protected:
 #ifdef PC_SANITIZE
         return;  // nothing is measured (below)
 #endif
-        const RunResult r = run_shell("@pc_synth --species apple --voxel 0.0066 --fruit-count 1266 --canopy "
-                                      "1.9770,1.9770,1.6475 -o '" + canopy() + "'");
+        const RunResult r = run_shell(
+            "@pc_synth --species apple --voxel 0.0066 --fruit-count 1266 --canopy "
+            "1.9770,1.9770,1.6475 -o '" +
+            canopy() + "'");
         ASSERT_EQ(r.code, 0) << r.err;
         // x y z only: the same points, written by hand as a binary PCD of three F 4 fields.
         const Cloud points = io::xyz(io::read_cloud(canopy()).blob);
         std::ofstream out(xyz(), std::ios::binary);
-        out << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " << points.size()
-            << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points.size() << "\nDATA binary\n";
+        out << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH "
+            << points.size() << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << points.size()
+            << "\nDATA binary\n";
         for (const auto& p : points) {
             out.write(reinterpret_cast<const char*>(&p.x), 12);
         }
@@ -77,7 +83,8 @@ protected:
     static std::string canopy() { return dir_->file("canopy.pcd"); }
     static std::string xyz() { return dir_->file("xyz.pcd"); }
 
-    static void expect_within_budget(const std::string& tool, const std::vector<std::string>& args,
+    static void expect_within_budget(const std::string& tool,
+                                     const std::vector<std::string>& args,
                                      const std::string& input) {
 #ifdef PC_SANITIZE
         GTEST_SKIP() << "peak memory is not measured under the sanitizers";
@@ -89,7 +96,8 @@ protected:
         const long long peak = peak_rss(tool, args, input);
         ASSERT_GT(peak, 0) << tool << " failed on " << input;
         EXPECT_LE(peak, budget) << tool << " peaked at " << peak / 1e6 << " MB on a " << bytes / 1e6
-                                << " MB cloud (" << static_cast<double>(peak) / static_cast<double>(bytes)
+                                << " MB cloud ("
+                                << static_cast<double>(peak) / static_cast<double>(bytes)
                                 << "x); the budget is " << budget / 1e6 << " MB";
     }
 

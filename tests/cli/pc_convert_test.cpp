@@ -1,7 +1,7 @@
+#include <filesystem>
+
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include <filesystem>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -63,7 +63,8 @@ TEST(PcConvert, HugeClaimFailsAtOnceWithinAMemoryCap) {
     const std::string f = dir.file("liar.pcd");
     spit(f, xyz_header("4000000000", "binary") + floats({1, 2, 3}));
     ASSERT_LT(slurp(f).size(), 250u);
-    const RunResult r = run_shell("timeout 5 sh -c '" + memory_cap(300000) + "@pc_convert -i " + f + "'");
+    const RunResult r =
+        run_shell("timeout 5 sh -c '" + memory_cap(300000) + "@pc_convert -i " + f + "'");
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("header declares 4000000000 points x 12 B = 48000000000 B, 12 B present"),
               std::string::npos)
@@ -84,13 +85,15 @@ TEST(PcConvert, OutputToAFifoIsWrittenThroughNotReplaced) {
     TempDir dir;
     const std::string fifo = dir.file("pipe");
     ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    const RunResult r = run_shell("timeout 20 cat " + fifo + " > " + dir.file("got") + " & @pc_convert -i " + kSample +
-                                  " -o " + fifo + "; wait");
+    const RunResult r = run_shell("timeout 20 cat " + fifo + " > " + dir.file("got") +
+                                  " & @pc_convert -i " + kSample + " -o " + fifo + "; wait");
     EXPECT_EQ(r.code, 0) << r.err;
     struct stat st {};
     ASSERT_EQ(::stat(fifo.c_str(), &st), 0);
     EXPECT_TRUE(S_ISFIFO(st.st_mode));
-    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("got")).out.rfind("format pcd binary\npoints 5640\n", 0), 0u);
+    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("got"))
+                  .out.rfind("format pcd binary\npoints 5640\n", 0),
+              0u);
 }
 
 TEST(PcConvert, OutputThroughASymlinkReplacesItsTargetAndKeepsPermissions) {
@@ -105,15 +108,19 @@ TEST(PcConvert, OutputThroughASymlinkReplacesItsTargetAndKeepsPermissions) {
     EXPECT_TRUE(S_ISLNK(st.st_mode));  // the link stays a link
     ASSERT_EQ(::stat(dir.file("target.pcd").c_str(), &st), 0);
     EXPECT_EQ(st.st_mode & 07777, 0640u);  // the file keeps its permissions
-    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("target.pcd")).out.rfind("format pcd binary\npoints 5640\n", 0), 0u);
-    EXPECT_NE(run_shell("@pc_convert -i " + kSample + " -o " + dir.path).code, 0);  // a directory is refused
+    EXPECT_EQ(run_shell("@pc_info --text -i " + dir.file("target.pcd"))
+                  .out.rfind("format pcd binary\npoints 5640\n", 0),
+              0u);
+    EXPECT_NE(run_shell("@pc_convert -i " + kSample + " -o " + dir.path).code,
+              0);  // a directory is refused
 }
 
 TEST(PcConvert, VerboseNotesGoToStderrOnly) {
     const RunResult r = run_shell("@pc_convert -v -i " + kSample + " | @pc_info --text");
     EXPECT_EQ(r.code, 0);
     EXPECT_NE(r.err.find("pc_convert: " + kSample + ": 5640 points, ply binary_little_endian"),
-              std::string::npos) << r.err;
+              std::string::npos)
+        << r.err;
     EXPECT_EQ(r.out.rfind("format pcd binary\npoints 5640\n", 0), 0u) << r.out;
 }
 

@@ -57,7 +57,8 @@ TEST(PcExtent, SeveralInputsSideBySideWithNames) {
     EXPECT_NE(r.out.find("| A | 9 | 1 |"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("| B | 1 | 0 |"), std::string::npos) << r.out;
     EXPECT_EQ(run_shell("@pc_extent " + dir.file("a.pcd") + " --names A,B").code, 2);
-    const RunResult csv = run_shell("@pc_extent --csv " + dir.file("a.pcd") + " " + dir.file("b.pcd"));
+    const RunResult csv =
+        run_shell("@pc_extent --csv " + dir.file("a.pcd") + " " + dir.file("b.pcd"));
     EXPECT_EQ(line_count(csv.out), 3);
 }
 

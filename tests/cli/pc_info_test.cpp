@@ -35,8 +35,8 @@ TEST(PcInfo, Open3dDoublePlyThroughPcConvertHasTheRightBounds) {
 }
 
 TEST(PcInfo, CountsNonFinitePointsAndKeepsThemOutOfTheBounds) {
-    const RunResult r = run_shell(
-        "@pc_info", xyz_header("3", "ascii") + "1 1 1\nnan 0 0\n2 inf 2\n");
+    const RunResult r =
+        run_shell("@pc_info", xyz_header("3", "ascii") + "1 1 1\nnan 0 0\n2 inf 2\n");
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["non_finite_points"], 2);
@@ -51,9 +51,9 @@ TEST(PcInfo, EmptyCloudReportsZeroPoints) {
 }
 
 TEST(PcInfo, CsvHasOneRowPerFieldElement) {
-    const RunResult r = run_shell(
-        "@pc_info --csv",
-        pcd_header("x y z h", "4 4 4 4", "F F F F", "1 1 1 3", "1", "1", "ascii") + "1 2 3 4 5 6\n");
+    const RunResult r = run_shell("@pc_info --csv", pcd_header("x y z h", "4 4 4 4", "F F F F",
+                                                               "1 1 1 3", "1", "1", "ascii") +
+                                                        "1 2 3 4 5 6\n");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(line_count(r.out), 1 + 3 + 3);
     EXPECT_NE(r.out.find("h,F,4,3,2,6,6,6,1\n"), std::string::npos) << r.out;

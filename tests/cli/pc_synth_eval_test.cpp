@@ -17,8 +17,9 @@ TEST(PcSynth, SameSeedSameBytesOtherSeedOtherBytes) {
     TempDir dir;
     for (const std::string mode : {"explicit", "implicit", "degraded"}) {
         for (const auto& [file, seed] : {std::pair{"a", 5}, {"b", 5}, {"c", 6}}) {
-            const RunResult r = run_shell("@pc_synth" + kSmall + " --mode " + mode + " --seed " + std::to_string(seed) +
-                                          " -o " + dir.file(file) + ".pcd --truth " + dir.file(file) + ".json");
+            const RunResult r = run_shell("@pc_synth" + kSmall + " --mode " + mode + " --seed " +
+                                          std::to_string(seed) + " -o " + dir.file(file) +
+                                          ".pcd --truth " + dir.file(file) + ".json");
             ASSERT_EQ(r.code, 0) << r.err;
         }
         EXPECT_EQ(slurp(dir.file("a.pcd")), slurp(dir.file("b.pcd"))) << mode;
@@ -37,11 +38,13 @@ TEST(PcSynth, ShippedScenesAreWhatTheGeneratorMakes) {
         if (bar == std::string::npos) {
             continue;
         }
-        const std::string name = line.substr(0, bar), shipped = std::string(PC_SAMPLE_CLOUDS_DIR) + "/" + name;
-        const RunResult r = run_shell("@pc_synth " + line.substr(bar + 1) + " -o " + dir.file("s.pcd") +
-                                      " --truth " + dir.file("s.json"));
+        const std::string name = line.substr(0, bar),
+                          shipped = std::string(PC_SAMPLE_CLOUDS_DIR) + "/" + name;
+        const RunResult r = run_shell("@pc_synth " + line.substr(bar + 1) + " -o " +
+                                      dir.file("s.pcd") + " --truth " + dir.file("s.json"));
         ASSERT_EQ(r.code, 0) << r.err;
-        EXPECT_EQ(slurp(dir.file("s.pcd")), slurp(shipped + ".pcd")) << name << ": run sample_clouds/make_scenes.sh";
+        EXPECT_EQ(slurp(dir.file("s.pcd")), slurp(shipped + ".pcd"))
+            << name << ": run sample_clouds/make_scenes.sh";
         EXPECT_EQ(slurp(dir.file("s.json")), slurp(shipped + ".json")) << name;
         ++scenes;
     }
@@ -50,8 +53,9 @@ TEST(PcSynth, ShippedScenesAreWhatTheGeneratorMakes) {
 
 TEST(PcSynth, TruthAgreesWithTheCloud) {
     TempDir dir;
-    const RunResult r = run_shell("@pc_synth --species plum --fruit-count 40 --canopy 0.4,0.4,0.3 --truth " +
-                                  dir.file("t.json") + " | @pc_info");
+    const RunResult r =
+        run_shell("@pc_synth --species plum --fruit-count 40 --canopy 0.4,0.4,0.3 --truth " +
+                  dir.file("t.json") + " | @pc_info");
     ASSERT_EQ(r.code, 0) << r.err;
     const auto truth = nlohmann::json::parse(slurp(dir.file("t.json")));
     const auto info = nlohmann::json::parse(r.out);
@@ -64,14 +68,16 @@ TEST(PcSynth, TruthAgreesWithTheCloud) {
 
 TEST(PcSynth, BadParametersAreUsageErrorsWithoutOutput) {
     TempDir dir;
-    for (const std::string args : {" --fruit-radius -1", " --mode solid", " --species banana", " --fruit-rgb 300,0,0",
-                                   " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1"}) {
+    for (const std::string args :
+         {" --fruit-radius -1", " --mode solid", " --species banana", " --fruit-rgb 300,0,0",
+          " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1"}) {
         const RunResult r = run_shell("@pc_synth" + args + " -o " + dir.file("x.pcd"));
         EXPECT_EQ(r.code, 2) << args << ": " << r.err;
         EXPECT_EQ(line_count(r.err), 1) << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir.file("x.pcd"))) << args;
     }
-    const RunResult r = run_shell("@pc_synth" + kSmall + " --truth /nonexistent/t.json -o " + dir.file("x.pcd"));
+    const RunResult r =
+        run_shell("@pc_synth" + kSmall + " --truth /nonexistent/t.json -o " + dir.file("x.pcd"));
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("/nonexistent/t.json"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.pcd")));
@@ -79,10 +85,12 @@ TEST(PcSynth, BadParametersAreUsageErrorsWithoutOutput) {
 
 TEST(PcEval, WellSeparatedExplicitSceneThroughThePipedChainScoresOne) {
     TempDir dir;
-    const RunResult r = run_shell("@pc_synth" + kSmall + " --truth " + dir.file("t.json") +
-                                  " | @pc_colorfilter --preset paper-dense | @pc_knn_outlier --preset paper-dense"
-                                  " | @pc_dbscan --preset paper-dense | @pc_recursive_split --preset paper-dense"
-                                  " | @pc_eval --truth " + dir.file("t.json"));
+    const RunResult r =
+        run_shell("@pc_synth" + kSmall + " --truth " + dir.file("t.json") +
+                  " | @pc_colorfilter --preset paper-dense | @pc_knn_outlier --preset paper-dense"
+                  " | @pc_dbscan --preset paper-dense | @pc_recursive_split --preset paper-dense"
+                  " | @pc_eval --truth " +
+                  dir.file("t.json"));
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["match"], "overlap");
@@ -95,8 +103,9 @@ TEST(PcEval, WellSeparatedExplicitSceneThroughThePipedChainScoresOne) {
 
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.
 std::string labelled(const std::vector<int>& labels, bool with_gt = true) {
-    std::string s = pcd_header(with_gt ? "x y z label gt_instance" : "x y z label", with_gt ? "4 4 4 4 4" : "4 4 4 4",
-                               with_gt ? "F F F U U" : "F F F U", with_gt ? "1 1 1 1 1" : "1 1 1 1", "12", "12", "ascii");
+    std::string s = pcd_header(with_gt ? "x y z label gt_instance" : "x y z label",
+                               with_gt ? "4 4 4 4 4" : "4 4 4 4", with_gt ? "F F F U U" : "F F F U",
+                               with_gt ? "1 1 1 1 1" : "1 1 1 1", "12", "12", "ascii");
     for (int n = 0; n < 12; ++n) {
         s += std::to_string(10 * (n / 4) + 0.1 * (n % 4)) + " 0 0 " + std::to_string(labels[n]);
         if (with_gt) {
@@ -116,7 +125,8 @@ TEST(PcEval, MergeAndSplitAreReported) {
     EXPECT_EQ(j["merged"], 1);
     EXPECT_EQ(j["split"], 0);
     EXPECT_EQ(j["true_positives"], 1);
-    const RunResult split = run_shell("@pc_eval --csv", labelled({1, 1, 3, 3, 2, 2, 2, 2, 4, 4, 4, 4}));
+    const RunResult split =
+        run_shell("@pc_eval --csv", labelled({1, 1, 3, 3, 2, 2, 2, 2, 4, 4, 4, 4}));
     ASSERT_EQ(split.code, 0) << split.err;
     EXPECT_NE(split.out.find(",overlap,4,3,"), std::string::npos) << split.out;
     EXPECT_NE(split.out.find(",0,1\n"), std::string::npos) << split.out;  // merged 0, split 1
@@ -124,7 +134,8 @@ TEST(PcEval, MergeAndSplitAreReported) {
 
 TEST(PcEval, CentroidMatchingNeedsTheTruthFile) {
     TempDir dir;
-    spit(dir.file("t.json"), R"({"fruit_count": 4, "fruits": [{"id": 1, "centre": [0.15, 0, 0], "radius": 1},
+    spit(dir.file("t.json"),
+         R"({"fruit_count": 4, "fruits": [{"id": 1, "centre": [0.15, 0, 0], "radius": 1},
         {"id": 2, "centre": [10.15, 0, 0], "radius": 1}, {"id": 3, "centre": [20.15, 0, 0], "radius": 1}]})");
     const std::string cloud = labelled({1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3}, false);
     const RunResult r = run_shell("@pc_eval --truth " + dir.file("t.json"), cloud);
@@ -136,12 +147,15 @@ TEST(PcEval, CentroidMatchingNeedsTheTruthFile) {
     EXPECT_EQ(j["recall"], 0.75);
     const RunResult none = run_shell("@pc_eval", cloud);
     EXPECT_EQ(none.code, 1);
-    EXPECT_EQ(none.err, "pc_eval: error: <stdin>: no 'gt_instance' field (give --truth to match by centroid)\n");
+    EXPECT_EQ(
+        none.err,
+        "pc_eval: error: <stdin>: no 'gt_instance' field (give --truth to match by centroid)\n");
     spit(dir.file("bad.json"), "{\"fruits\": [{\"id\": 1}]}");
     const RunResult bad = run_shell("@pc_eval --truth " + dir.file("bad.json"), cloud);
     EXPECT_EQ(bad.code, 1);
     EXPECT_EQ(line_count(bad.err), 1);
-    EXPECT_NE(bad.err.find(dir.file("bad.json") + ": not a ground-truth file"), std::string::npos) << bad.err;
+    EXPECT_NE(bad.err.find(dir.file("bad.json") + ": not a ground-truth file"), std::string::npos)
+        << bad.err;
 }
 
 }  // namespace

@@ -24,9 +24,11 @@ std::string cloud_with_normals() {
 TEST(PcTransform, TransformThenInverseIsTheIdentityWithinFloatPrecision) {
     TempDir dir;
     spit(dir.file("a.pcd"), cloud_with_normals());
-    const std::string t = " --rotate 1,2,3,33 --scale 2.5 --translate 4,-5,6 --matrix 1,0,0,1,0,1,0,2,0,0,1,3";
-    const RunResult r = run_shell("@pc_transform -i " + dir.file("a.pcd") + t + " | @pc_transform --inverse" + t +
-                                  " | @pc_compare - " + dir.file("a.pcd") + " --tau 1e-5");
+    const std::string t =
+        " --rotate 1,2,3,33 --scale 2.5 --translate 4,-5,6 --matrix 1,0,0,1,0,1,0,2,0,0,1,3";
+    const RunResult r =
+        run_shell("@pc_transform -i " + dir.file("a.pcd") + t + " | @pc_transform --inverse" + t +
+                  " | @pc_compare - " + dir.file("a.pcd") + " --tau 1e-5");
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_LT(j["a_to_b"]["max"].get<double>(), 2e-6);
@@ -34,7 +36,8 @@ TEST(PcTransform, TransformThenInverseIsTheIdentityWithinFloatPrecision) {
 }
 
 TEST(PcTransform, NormalsRotateWithThePointsAndOtherFieldsStay) {
-    const RunResult r = run_shell("@pc_transform --rotate 0,0,1,90 --scale 3", cloud_with_normals());
+    const RunResult r =
+        run_shell("@pc_transform --rotate 0,0,1,90 --scale 3", cloud_with_normals());
     ASSERT_EQ(r.code, 0) << r.err;
     const io::Blob b = io::parse_cloud(r.out).blob;
     const Cloud c = io::xyz(b);
@@ -49,23 +52,28 @@ TEST(PcTransform, NormalsRotateWithThePointsAndOtherFieldsStay) {
 
 TEST(PcTransform, NerfstudioRoundTrip) {
     TempDir dir;
-    spit(dir.file("dp.json"),
-         R"({"transform": [[0.0, 0.6, 0.8, 0.1], [1.0, 0.0, 0.0, -0.2], [0.0, 0.8, -0.6, 0.3]], "scale": 0.24})");
-    const RunResult r = run_shell("@pc_transform -i " + kSample + " --nerfstudio " + dir.file("dp.json") +
-                                  " --inverse | @pc_transform --nerfstudio " + dir.file("dp.json") +
-                                  " | @pc_compare - " + kSample + " --tau 1e-9");
+    spit(
+        dir.file("dp.json"),
+        R"({"transform": [[0.0, 0.6, 0.8, 0.1], [1.0, 0.0, 0.0, -0.2], [0.0, 0.8, -0.6, 0.3]], "scale": 0.24})");
+    const RunResult r =
+        run_shell("@pc_transform -i " + kSample + " --nerfstudio " + dir.file("dp.json") +
+                  " --inverse | @pc_transform --nerfstudio " + dir.file("dp.json") +
+                  " | @pc_compare - " + kSample + " --tau 1e-9");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_LT(nlohmann::json::parse(r.out)["a_to_b"]["max"].get<double>(), 1e-12);  // F 8 coordinates
+    EXPECT_LT(nlohmann::json::parse(r.out)["a_to_b"]["max"].get<double>(),
+              1e-12);  // F 8 coordinates
 }
 
 TEST(PcTransform, CenterAndNormalize) {
-    const RunResult r = run_shell("@pc_transform -i " + kSample + " --center --normalize mean-radius | @pc_extent");
+    const RunResult r =
+        run_shell("@pc_transform -i " + kSample + " --center --normalize mean-radius | @pc_extent");
     ASSERT_EQ(r.code, 0) << r.err;
     const auto c = nlohmann::json::parse(r.out)["clouds"][0];
     // pc_extent measures float coordinates (pc::Cloud), so float precision is the bound.
     EXPECT_NEAR(c["mean_radius"].get<double>(), 1.0, 1e-6);
     EXPECT_NEAR(c["centroid"][0].get<double>(), 0.0, 1e-6);
-    const RunResult d = run_shell("@pc_transform -i " + kSample + " --normalize diagonal | @pc_info");
+    const RunResult d =
+        run_shell("@pc_transform -i " + kSample + " --normalize diagonal | @pc_info");
     const auto j = nlohmann::json::parse(d.out);
     double diag2 = 0;
     for (int a = 0; a < 3; ++a) {

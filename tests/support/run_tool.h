@@ -17,7 +17,9 @@ struct RunResult {
     std::string out, err;
 };
 
-inline std::string tool_path(const std::string& name) { return std::string(PC_TOOLS_DIR) + "/" + name; }
+inline std::string tool_path(const std::string& name) {
+    return std::string(PC_TOOLS_DIR) + "/" + name;
+}
 
 inline std::string slurp(const std::string& path) {
     std::ifstream f(path, std::ios::binary);

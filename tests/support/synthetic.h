@@ -21,7 +21,9 @@ struct FieldSpec {
 /// A blob with `fields` laid out back to back and `n` points (width n, height 1), filled by
 /// fill(point, field index, element) -> double, stored in the field's type.
 template <class Fill>
-io::Blob make_blob(const std::vector<FieldSpec>& fields, std::size_t width, std::size_t height,
+io::Blob make_blob(const std::vector<FieldSpec>& fields,
+                   std::size_t width,
+                   std::size_t height,
                    Fill fill) {
     io::Blob b;
     std::size_t step = 0;
@@ -48,16 +50,54 @@ io::Blob make_blob(const std::vector<FieldSpec>& fields, std::size_t width, std:
                 std::uint8_t* p = &b.cloud.data[i * step + f.offset + c * es];
                 const double v = fill(i, k, c);
                 switch (f.datatype) {
-                    case pcl::PCLPointField::INT8: { auto x = static_cast<std::int8_t>(v); std::memcpy(p, &x, 1); break; }
-                    case pcl::PCLPointField::UINT8: { auto x = static_cast<std::uint8_t>(v); std::memcpy(p, &x, 1); break; }
-                    case pcl::PCLPointField::INT16: { auto x = static_cast<std::int16_t>(v); std::memcpy(p, &x, 2); break; }
-                    case pcl::PCLPointField::UINT16: { auto x = static_cast<std::uint16_t>(v); std::memcpy(p, &x, 2); break; }
-                    case pcl::PCLPointField::INT32: { auto x = static_cast<std::int32_t>(v); std::memcpy(p, &x, 4); break; }
-                    case pcl::PCLPointField::UINT32: { auto x = static_cast<std::uint32_t>(v); std::memcpy(p, &x, 4); break; }
-                    case pcl::PCLPointField::INT64: { auto x = static_cast<std::int64_t>(v); std::memcpy(p, &x, 8); break; }
-                    case pcl::PCLPointField::UINT64: { auto x = static_cast<std::uint64_t>(v); std::memcpy(p, &x, 8); break; }
-                    case pcl::PCLPointField::FLOAT32: { auto x = static_cast<float>(v); std::memcpy(p, &x, 4); break; }
-                    default: std::memcpy(p, &v, 8); break;
+                    case pcl::PCLPointField::INT8: {
+                        auto x = static_cast<std::int8_t>(v);
+                        std::memcpy(p, &x, 1);
+                        break;
+                    }
+                    case pcl::PCLPointField::UINT8: {
+                        auto x = static_cast<std::uint8_t>(v);
+                        std::memcpy(p, &x, 1);
+                        break;
+                    }
+                    case pcl::PCLPointField::INT16: {
+                        auto x = static_cast<std::int16_t>(v);
+                        std::memcpy(p, &x, 2);
+                        break;
+                    }
+                    case pcl::PCLPointField::UINT16: {
+                        auto x = static_cast<std::uint16_t>(v);
+                        std::memcpy(p, &x, 2);
+                        break;
+                    }
+                    case pcl::PCLPointField::INT32: {
+                        auto x = static_cast<std::int32_t>(v);
+                        std::memcpy(p, &x, 4);
+                        break;
+                    }
+                    case pcl::PCLPointField::UINT32: {
+                        auto x = static_cast<std::uint32_t>(v);
+                        std::memcpy(p, &x, 4);
+                        break;
+                    }
+                    case pcl::PCLPointField::INT64: {
+                        auto x = static_cast<std::int64_t>(v);
+                        std::memcpy(p, &x, 8);
+                        break;
+                    }
+                    case pcl::PCLPointField::UINT64: {
+                        auto x = static_cast<std::uint64_t>(v);
+                        std::memcpy(p, &x, 8);
+                        break;
+                    }
+                    case pcl::PCLPointField::FLOAT32: {
+                        auto x = static_cast<float>(v);
+                        std::memcpy(p, &x, 4);
+                        break;
+                    }
+                    default:
+                        std::memcpy(p, &v, 8);
+                        break;
                 }
             }
         }

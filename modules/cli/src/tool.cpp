@@ -1,4 +1,18 @@
-#include <pc/cli/tool.h>
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <climits>
+#include <csignal>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <iostream>
+#include <limits>
+#include <mutex>
+#include <sstream>
 
 #include <fcntl.h>
 #include <malloc.h>
@@ -6,29 +20,13 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <algorithm>
-#include <cctype>
-#include <cerrno>
-#include <climits>
-#include <cstdint>
-#include <cstdlib>
-#include <charconv>
-#include <chrono>
-#include <cstdio>
-#include <csignal>
-#include <cstring>
-#include <iostream>
-#include <limits>
-#include <mutex>
-#include <sstream>
-
 #include <boost/program_options.hpp>
 #include <pcl/console/print.h>
 
+#include <pc/cli/tool.h>
 #include <pc/core/error.h>
 #include <pc/io/pcd.h>
 #include <pc/io/ply.h>
-
 
 namespace po = boost::program_options;
 
@@ -222,7 +220,8 @@ io::Blob Streams::read(const std::string& path) {
 void Streams::note(const std::string& message) const {
     if (verbose_ && !quiet_) {
         // Elapsed time since the tool started: progress and cost of each step on large clouds.
-        const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        const double t =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
         char stamp[32];
         std::snprintf(stamp, sizeof stamp, " [%.3f s]", t);
         std::cerr << tool_ << ": " << message << stamp << std::endl;
@@ -303,8 +302,9 @@ void Tool::option(const std::string& name,
 namespace {
 template <class T>
 void bind_number(Tool& tool, const std::string& name, T* field, const std::string& help) {
-    tool.option(name, number_text(*field),
-                [field, name](const std::string& s) { *field = parse_number<T>(name, s); }, help);
+    tool.option(
+        name, number_text(*field),
+        [field, name](const std::string& s) { *field = parse_number<T>(name, s); }, help);
 }
 }  // namespace
 
@@ -325,26 +325,28 @@ void Tool::option(const std::string& name, std::uint64_t* field, const std::stri
 }
 
 void Tool::option(const std::string& name, std::optional<double>* field, const std::string& help) {
-    option(name, *field ? number_text(**field) : "off",
-           [field, name](const std::string& s) {
-               if (s == "off") {
-                   field->reset();
-               } else {
-                   *field = parse_number<double>(name, s);
-               }
-           },
-           help);
+    option(
+        name, *field ? number_text(**field) : "off",
+        [field, name](const std::string& s) {
+            if (s == "off") {
+                field->reset();
+            } else {
+                *field = parse_number<double>(name, s);
+            }
+        },
+        help);
 }
 
 void Tool::option(const std::string& name, std::string* field, const std::string& help) {
-    option(name, *field, [field](const std::string& s) { *field = s; }, help);
+    option(
+        name, *field, [field](const std::string& s) { *field = s; }, help);
 }
 
 void Tool::option(const std::string& name, std::array<double, 3>* field, const std::string& help) {
     const auto& v = *field;
     const std::string text = number_text(v[0]) + "," + number_text(v[1]) + "," + number_text(v[2]);
-    option(name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); },
-           help);
+    option(
+        name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); }, help);
 }
 
 void Tool::flag(const std::string& name, bool* field, const std::string& help) {
@@ -358,9 +360,9 @@ void Tool::presets(const std::vector<std::string>& names,
     for (const auto& n : names) {
         list += (list.empty() ? "" : ", ") + n;
     }
-    impl_->own.add_options()("preset", po::value<std::string>(&impl_->preset),
-                             ("named parameter set, applied before explicit options: " + list)
-                                 .c_str());
+    impl_->own.add_options()(
+        "preset", po::value<std::string>(&impl_->preset),
+        ("named parameter set, applied before explicit options: " + list).c_str());
     impl_->apply_preset = [names, apply = std::move(apply)](const std::string& p) {
         if (std::find(names.begin(), names.end(), p) == names.end()) {
             throw InvalidArgument("--preset: unknown preset '" + p + "'");
@@ -439,17 +441,20 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                              "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)");
     }
     common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
-                         cloud_out ? "output cloud ('-' = stdout); a file is written to a temporary file and renamed, a device or FIFO directly"
+                         cloud_out ? "output cloud ('-' = stdout); a file is written to a "
+                                     "temporary file and renamed, a device or FIFO directly"
                                    : "output report ('-' = stdout)");
     if (im.reads) {
-        common.add_options()("max-input-bytes",
-                             po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
-                             "refuse inputs larger than this");
+        common.add_options()(
+            "max-input-bytes",
+            po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
+            "refuse inputs larger than this");
     }
     common.add_options()("verbose,v", po::bool_switch(&io.verbose_), "notes and timings on stderr")(
         "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
     if (cloud_out) {
-        common.add_options()("format", po::value<std::string>(&io.encoding_)->default_value("binary"),
+        common.add_options()("format",
+                             po::value<std::string>(&io.encoding_)->default_value("binary"),
                              "PCD encoding: binary, ascii or compressed (PLY: binary or ascii)")(
             "to", po::value<std::string>(&io.container_)->default_value("auto"),
             "output container: pcd, ply, or auto (ply when -o ends in .ply)");
@@ -469,15 +474,17 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
     };
     try {
         po::variables_map vm;
-        po::store(po::command_line_parser(argc, argv).options(parse_set).positional(positional).run(),
-                  vm);
+        po::store(
+            po::command_line_parser(argc, argv).options(parse_set).positional(positional).run(),
+            vm);
         if (vm.count("help")) {
             std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
                       << (im.inputs  ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
                           : im.reads ? std::string(" [options] [-i IN] [-o OUT]")
                                      : std::string(" [options] [-o OUT]"))
                       << "\n"
-                      << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
+                      << all
+                      << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
                       << im.epilog;
             return kOk;
         }
@@ -503,7 +510,8 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             }
         }
         if (cloud_out) {
-            if (io.encoding_ != "binary" && io.encoding_ != "ascii" && io.encoding_ != "compressed") {
+            if (io.encoding_ != "binary" && io.encoding_ != "ascii" &&
+                io.encoding_ != "compressed") {
                 throw InvalidArgument("--format must be binary, ascii or compressed, got '" +
                                       io.encoding_ + "'");
             }
@@ -511,8 +519,9 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                 throw InvalidArgument("--to must be pcd, ply or auto, got '" + io.container_ + "'");
             }
             if (io.output_ == "-" && io.encoding_ != "ascii" && ::isatty(1)) {
-                throw InvalidArgument("refusing to write a binary cloud to a terminal; use -o FILE, "
-                                      "a pipe, or --format ascii");
+                throw InvalidArgument(
+                    "refusing to write a binary cloud to a terminal; use -o FILE, "
+                    "a pipe, or --format ascii");
             }
         }
         if (im.inputs != nullptr &&

@@ -1,6 +1,6 @@
-#include <pc/core/error.h>
-
 #include <charconv>
+
+#include <pc/core/error.h>
 
 namespace pc {
 

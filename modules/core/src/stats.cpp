@@ -1,10 +1,10 @@
-#include <pc/core/stats.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+
+#include <pc/core/stats.h>
 
 namespace pc {
 

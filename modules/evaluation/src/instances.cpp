@@ -1,5 +1,3 @@
-#include <pc/evaluation/instances.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +6,7 @@
 #include <unordered_map>
 
 #include <pc/core/error.h>
+#include <pc/evaluation/instances.h>
 
 namespace pc::evaluation {
 
@@ -49,7 +48,10 @@ Table tabulate(std::span<const std::uint32_t> predicted,
 }
 
 /// Merges and splits (see InstanceParams::share), and the counts and rates from the matches.
-InstanceScores finish(const Table& t, std::size_t gt_count, std::vector<Match> matches, double share) {
+InstanceScores finish(const Table& t,
+                      std::size_t gt_count,
+                      std::vector<Match> matches,
+                      double share) {
     InstanceScores s;
     s.count = t.label_size.size();
     s.gt_count = gt_count;
@@ -73,7 +75,8 @@ InstanceScores finish(const Table& t, std::size_t gt_count, std::vector<Match> m
             s.split.push_back(g);
         }
     }
-    std::sort(matches.begin(), matches.end(), [](const Match& a, const Match& b) { return a.label < b.label; });
+    std::sort(matches.begin(), matches.end(),
+              [](const Match& a, const Match& b) { return a.label < b.label; });
     s.true_positives = matches.size();
     s.matches = std::move(matches);
     const double tp = static_cast<double>(s.true_positives);
@@ -100,8 +103,9 @@ std::vector<Match> greedy(const std::vector<Match>& ordered) {
 
 std::size_t checked_gt_count(std::size_t given, std::size_t present) {
     if (given != 0 && given < present) {
-        throw InvalidArgument("evaluation: ground-truth count " + std::to_string(given) + " is below the " +
-                              std::to_string(present) + " fruit present in the cloud");
+        throw InvalidArgument("evaluation: ground-truth count " + std::to_string(given) +
+                              " is below the " + std::to_string(present) +
+                              " fruit present in the cloud");
     }
     return given ? given : present;
 }
@@ -110,13 +114,15 @@ std::size_t checked_gt_count(std::size_t given, std::size_t present) {
 
 void InstanceParams::validate() const {
     if (!(min_iou >= 0.5 && min_iou < 1)) {
-        throw InvalidArgument("evaluation: min_iou must be in [0.5, 1), got " + format_number(min_iou));
+        throw InvalidArgument("evaluation: min_iou must be in [0.5, 1), got " +
+                              format_number(min_iou));
     }
     if (!(share >= 0.5 && share < 1)) {
         throw InvalidArgument("evaluation: share must be in [0.5, 1), got " + format_number(share));
     }
     if (!(radius_factor > 0 && std::isfinite(radius_factor))) {
-        throw InvalidArgument("evaluation: radius_factor must be > 0, got " + format_number(radius_factor));
+        throw InvalidArgument("evaluation: radius_factor must be > 0, got " +
+                              format_number(radius_factor));
     }
 }
 
@@ -129,14 +135,17 @@ InstanceScores score_by_overlap(std::span<const std::uint32_t> predicted,
     std::vector<Match> candidates;
     for (const auto& [key, n] : t.pair) {
         const double inter = static_cast<double>(n);
-        const double uni = static_cast<double>(t.label_size.at(key.first) + t.fruit_size.at(key.second)) - inter;
+        const double uni =
+            static_cast<double>(t.label_size.at(key.first) + t.fruit_size.at(key.second)) - inter;
         const double iou = inter / uni;
         if (iou > p.min_iou) {
             candidates.push_back({key.first, key.second, inter, iou});
         }
     }
     std::sort(candidates.begin(), candidates.end(), [](const Match& a, const Match& b) {
-        return a.iou != b.iou ? a.iou > b.iou : a.label != b.label ? a.label < b.label : a.fruit < b.fruit;
+        return a.iou != b.iou       ? a.iou > b.iou
+               : a.label != b.label ? a.label < b.label
+                                    : a.fruit < b.fruit;
     });
     return finish(t, checked_gt_count(gt_count, t.fruit_size.size()), greedy(candidates), p.share);
 }
@@ -157,14 +166,17 @@ InstanceScores score_by_centroid(const Cloud& cloud,
     for (std::size_t f = 0; f < fruits.size(); ++f) {
         by_x[f] = f;
         if (!(fruits[f].radius > 0) || fruits[f].id == 0) {
-            throw InvalidArgument("evaluation: fruit " + std::to_string(f) + " needs an id > 0 and a radius > 0");
+            throw InvalidArgument("evaluation: fruit " + std::to_string(f) +
+                                  " needs an id > 0 and a radius > 0");
         }
         reach = std::max(reach, p.radius_factor * fruits[f].radius);
     }
-    std::sort(by_x.begin(), by_x.end(), [&](auto a, auto b) { return fruits[a].centre[0] < fruits[b].centre[0]; });
+    std::sort(by_x.begin(), by_x.end(),
+              [&](auto a, auto b) { return fruits[a].centre[0] < fruits[b].centre[0]; });
     const auto near = [&](const std::array<double, 3>& q, auto&& visit) {
-        auto it = std::lower_bound(by_x.begin(), by_x.end(), q[0] - reach,
-                                   [&](std::size_t f, double x) { return fruits[f].centre[0] < x; });
+        auto it =
+            std::lower_bound(by_x.begin(), by_x.end(), q[0] - reach,
+                             [&](std::size_t f, double x) { return fruits[f].centre[0] < x; });
         for (; it != by_x.end() && fruits[*it].centre[0] <= q[0] + reach; ++it) {
             const auto& f = fruits[*it];
             const double dx = q[0] - f.centre[0], dy = q[1] - f.centre[1], dz = q[2] - f.centre[2];
@@ -193,7 +205,8 @@ InstanceScores score_by_centroid(const Cloud& cloud,
     std::map<std::uint32_t, std::array<double, 4>> sums;  // x, y, z, finite points
     for (std::size_t n = 0; n < cloud.size(); ++n) {
         const auto& pt = cloud[n];
-        if (t.label_size.contains(predicted[n]) && std::isfinite(pt.x) && std::isfinite(pt.y) && std::isfinite(pt.z)) {
+        if (t.label_size.contains(predicted[n]) && std::isfinite(pt.x) && std::isfinite(pt.y) &&
+            std::isfinite(pt.z)) {
             auto& s = sums[predicted[n]];
             s[0] += pt.x;
             s[1] += pt.y;

@@ -1,5 +1,3 @@
-#include <pc/features/compare.h>
-
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -7,6 +5,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/features/compare.h>
 #include <pc/search/grid.h>
 
 namespace pc::features {
@@ -94,15 +93,15 @@ CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& param
     r.chamfer = r.a_to_b.mean + r.b_to_a.mean;
     r.precision = r.a_to_b.within_tau;
     r.recall = r.b_to_a.within_tau;
-    r.fscore = r.precision + r.recall > 0
-                   ? 2 * r.precision * r.recall / (r.precision + r.recall)
-                   : 0.0;
+    r.fscore =
+        r.precision + r.recall > 0 ? 2 * r.precision * r.recall / (r.precision + r.recall) : 0.0;
     const auto va = voxels(a, params.voxel), vb = voxels(b, params.voxel);
     std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> shared;
     std::set_intersection(va.begin(), va.end(), vb.begin(), vb.end(), std::back_inserter(shared));
     r.b_voxels = vb.size();
     r.shared_voxels = shared.size();
-    r.interior_coverage = vb.empty() ? 0.0 : static_cast<double>(shared.size()) / static_cast<double>(vb.size());
+    r.interior_coverage =
+        vb.empty() ? 0.0 : static_cast<double>(shared.size()) / static_cast<double>(vb.size());
     return r;
 }
 

@@ -1,15 +1,14 @@
-#include <pc/features/extent.h>
-
 #include <algorithm>
 #include <array>
-#include <limits>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <string>
 
 #include <pc/core/error.h>
+#include <pc/features/extent.h>
 
 extern "C" {
 #include <libqhull_r/qhull_ra.h>
@@ -121,7 +120,8 @@ Extent extent(const XyzView& cloud, std::span<const std::uint32_t> indices) {
             continue;
         }
         const double v[3] = {p.x, p.y, p.z};
-        const double dx = v[0] - e.centroid[0], dy = v[1] - e.centroid[1], dz = v[2] - e.centroid[2];
+        const double dx = v[0] - e.centroid[0], dy = v[1] - e.centroid[1],
+                     dz = v[2] - e.centroid[2];
         const double r = std::sqrt(dx * dx + dy * dy + dz * dz);
         sum += r;
         e.max_radius = std::max(e.max_radius, r);

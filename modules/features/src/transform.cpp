@@ -1,5 +1,3 @@
-#include <pc/features/transform.h>
-
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -10,13 +8,16 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
+#include <pc/features/transform.h>
 
 namespace pc::features {
 
 Matrix4 parse_matrix(const std::string& text, const std::string& what) {
     std::vector<double> v;
     std::size_t at = 0;
-    const auto sep = [](char c) { return c == ' ' || c == ',' || c == '\n' || c == '\t' || c == '\r' || c == ';'; };
+    const auto sep = [](char c) {
+        return c == ' ' || c == ',' || c == '\n' || c == '\t' || c == '\r' || c == ';';
+    };
     while (at < text.size()) {
         while (at < text.size() && sep(text[at])) {
             ++at;

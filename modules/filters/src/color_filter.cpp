@@ -1,10 +1,9 @@
-#include <pc/filters/color_filter.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cmath>
 
 #include <pc/core/error.h>
+#include <pc/filters/color_filter.h>
 
 namespace pc::filters {
 
@@ -36,7 +35,9 @@ bool passes(const io::Rgb& c, const ColorFilterParams& p) {
             return false;  // grey has no hue
         }
         const double d = mx - mn;
-        double h = mx == r ? std::fmod((g - b) / d, 6.0) : mx == g ? (b - r) / d + 2 : (r - g) / d + 4;
+        double h = mx == r   ? std::fmod((g - b) / d, 6.0)
+                   : mx == g ? (b - r) / d + 2
+                             : (r - g) / d + 4;
         h *= 60.0;
         if (h < 0) {
             h += 360.0;
@@ -76,15 +77,15 @@ void ColorFilterParams::validate() const {
     };
     unit("saturation", saturation);
     unit("value", value);
-    if (hue_deg && !(hue_deg->lo >= 0 && hue_deg->lo <= 360 && hue_deg->hi >= 0 &&
-                     hue_deg->hi <= 360)) {
+    if (hue_deg &&
+        !(hue_deg->lo >= 0 && hue_deg->lo <= 360 && hue_deg->hi >= 0 && hue_deg->hi <= 360)) {
         throw InvalidArgument("color_filter: hue must be LO:HI degrees in 0..360, got " +
                               format_number(hue_deg->lo) + ":" + format_number(hue_deg->hi));
     }
     for (const auto& [name, v] : {std::pair{"min_mean", min_mean}, {"min_value", min_value}}) {
         if (v && !(*v >= -1 && *v <= 1)) {
-            throw InvalidArgument(std::string("color_filter: ") + name + " must be in [-1, 1], got " +
-                                  format_number(*v));
+            throw InvalidArgument(std::string("color_filter: ") + name +
+                                  " must be in [-1, 1], got " + format_number(*v));
         }
     }
 }

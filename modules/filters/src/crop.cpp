@@ -1,6 +1,5 @@
-#include <pc/filters/crop.h>
-
 #include <pc/core/error.h>
+#include <pc/filters/crop.h>
 
 namespace pc::filters {
 

@@ -1,5 +1,3 @@
-#include <pc/filters/knn_outlier.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +5,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/filters/knn_outlier.h>
 #include <pc/search/grid.h>
 
 namespace pc::filters {
@@ -20,7 +19,8 @@ void KnnOutlierParams::validate() const {
                               format_number(drop_percentile));
     }
     if (std_mul && !std::isfinite(*std_mul)) {
-        throw InvalidArgument("knn_outlier: std_mul must be finite, got " + format_number(*std_mul));
+        throw InvalidArgument("knn_outlier: std_mul must be finite, got " +
+                              format_number(*std_mul));
     }
 }
 
@@ -34,16 +34,17 @@ constexpr double kOccupancy = 16.0;
 /// non-finite or alone).
 std::vector<double> knn_mean_distance(const search::Grid& grid, std::size_t n, std::uint32_t k) {
     std::vector<double> mean(n, std::numeric_limits<double>::infinity());
-    grid.all_knn(k, [&](std::uint32_t i, const std::vector<std::uint32_t>&, const std::vector<double>& d2) {
-        if (d2.empty()) {
-            return;
-        }
-        double sum = 0;
-        for (double v : d2) {
-            sum += std::sqrt(v);
-        }
-        mean[i] = sum / static_cast<double>(d2.size());
-    });
+    grid.all_knn(
+        k, [&](std::uint32_t i, const std::vector<std::uint32_t>&, const std::vector<double>& d2) {
+            if (d2.empty()) {
+                return;
+            }
+            double sum = 0;
+            for (double v : d2) {
+                sum += std::sqrt(v);
+            }
+            mean[i] = sum / static_cast<double>(d2.size());
+        });
     return mean;
 }
 
@@ -93,7 +94,8 @@ KnnOutlierResult knn_outlier(XyzRecords& points, const KnnOutlierParams& params)
     params.validate();
     std::vector<double> mean;
     {  // the grid (and the records' order) is released before the flags are allocated
-        const auto grid = search::grid_over(points, search::Grid::suggest_cell(points.view(), kOccupancy));
+        const auto grid =
+            search::grid_over(points, search::Grid::suggest_cell(points.view(), kOccupancy));
         mean = knn_mean_distance(*grid, points.size, params.k);
     }
     return flag_outliers(std::move(mean), params);

@@ -1,5 +1,3 @@
-#include <pc/filters/voxel_downsample.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -9,6 +7,7 @@
 #include <vector>
 
 #include <pc/core/error.h>
+#include <pc/filters/voxel_downsample.h>
 #include <pc/io/points.h>
 
 namespace pc::filters {
@@ -27,7 +26,10 @@ namespace {
 /// points in index order renumbers the runs as first met (4 bytes a run; a table of (first
 /// point, run) pairs sorted by point, 8 bytes a run, was the step's peak beside the entries).
 template <class Entries, class KeyAt, class IndexAt>
-std::uint32_t number_voxels(Entries&& keyed, KeyAt key_at, IndexAt index_at, std::vector<std::uint32_t>& voxel) {
+std::uint32_t number_voxels(Entries&& keyed,
+                            KeyAt key_at,
+                            IndexAt index_at,
+                            std::vector<std::uint32_t>& voxel) {
     const std::size_t m = keyed.size();
     std::uint32_t runs = 0;
     for (std::size_t s = 0; s < m; ++s) {
@@ -78,11 +80,13 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
     };
     int bits[3] = {0, 0, 0};
     for (int a = 0; a < 3 && finite > 0; ++a) {
-        bits[a] = static_cast<int>(std::bit_width(static_cast<std::uint64_t>(cell(hi[a], a))));  // cell(hi) >= 0
+        bits[a] = static_cast<int>(
+            std::bit_width(static_cast<std::uint64_t>(cell(hi[a], a))));  // cell(hi) >= 0
     }
     const auto packed_key = [&](const pcl::PointXYZ& p) {
         return (static_cast<std::uint64_t>(cell(p.x, 0)) << (bits[1] + bits[2])) |
-               (static_cast<std::uint64_t>(cell(p.y, 1)) << bits[2]) | static_cast<std::uint64_t>(cell(p.z, 2));
+               (static_cast<std::uint64_t>(cell(p.y, 1)) << bits[2]) |
+               static_cast<std::uint64_t>(cell(p.z, 2));
     };
     const int key_bits = bits[0] + bits[1] + bits[2];
     const int index_bits = static_cast<int>(std::bit_width(std::max<std::size_t>(n, 2) - 1));
@@ -101,7 +105,8 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
         const std::uint64_t index_mask = (std::uint64_t{1} << index_bits) - 1;
         r.count = number_voxels(
             keyed, [&](std::size_t s) { return keyed[s] >> index_bits; },
-            [&](std::size_t s) { return static_cast<std::uint32_t>(keyed[s] & index_mask); }, r.voxel);
+            [&](std::size_t s) { return static_cast<std::uint32_t>(keyed[s] & index_mask); },
+            r.voxel);
         return r;
     }
     const auto by_pairs = [&](auto key_of) {
@@ -116,15 +121,16 @@ VoxelResult voxel_downsample(const XyzView& cloud, const VoxelParams& params) {
         }
         std::sort(keyed.begin(), keyed.end());  // by voxel, then by point index
         return number_voxels(
-            keyed, [&](std::size_t s) { return keyed[s].first; }, [&](std::size_t s) { return keyed[s].second; },
-            r.voxel);
+            keyed, [&](std::size_t s) { return keyed[s].first; },
+            [&](std::size_t s) { return keyed[s].second; }, r.voxel);
     };
     if (key_bits <= 64) {
         // Voxel indices are >= 0 and fit: one packed word per key, the same order as (x, y, z).
         r.count = by_pairs(packed_key);
     } else {  // more than 2^64 voxels in the bounding box
         r.count = by_pairs([&](const pcl::PointXYZ& p) {
-            return std::tuple<std::int64_t, std::int64_t, std::int64_t>{cell(p.x, 0), cell(p.y, 1), cell(p.z, 2)};
+            return std::tuple<std::int64_t, std::int64_t, std::int64_t>{cell(p.x, 0), cell(p.y, 1),
+                                                                        cell(p.z, 2)};
         });
     }
     return r;

@@ -1,12 +1,10 @@
-#include <pc/io/blob.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
 
-
 #include <pc/core/error.h>
+#include <pc/io/blob.h>
 
 namespace pc::io {
 
@@ -15,16 +13,21 @@ using Field = pcl::PCLPointField;
 std::size_t type_size(std::uint8_t datatype) {
     switch (datatype) {
         case Field::INT8:
-        case Field::UINT8: return 1;
+        case Field::UINT8:
+            return 1;
         case Field::INT16:
-        case Field::UINT16: return 2;
+        case Field::UINT16:
+            return 2;
         case Field::INT32:
         case Field::UINT32:
-        case Field::FLOAT32: return 4;
+        case Field::FLOAT32:
+            return 4;
         case Field::FLOAT64:
         case Field::INT64:
-        case Field::UINT64: return 8;
-        default: return 0;
+        case Field::UINT64:
+            return 8;
+        default:
+            return 0;
     }
 }
 
@@ -33,14 +36,18 @@ char type_letter(std::uint8_t datatype) {
         case Field::INT8:
         case Field::INT16:
         case Field::INT32:
-        case Field::INT64: return 'I';
+        case Field::INT64:
+            return 'I';
         case Field::UINT8:
         case Field::UINT16:
         case Field::UINT32:
-        case Field::UINT64: return 'U';
+        case Field::UINT64:
+            return 'U';
         case Field::FLOAT32:
-        case Field::FLOAT64: return 'F';
-        default: return '?';
+        case Field::FLOAT64:
+            return 'F';
+        default:
+            return '?';
     }
 }
 
@@ -53,11 +60,16 @@ std::uint8_t datatype_of(char letter, std::size_t size) {
         return 0;
     }
     switch (size) {
-        case 1: return is_signed ? Field::INT8 : Field::UINT8;
-        case 2: return is_signed ? Field::INT16 : Field::UINT16;
-        case 4: return is_signed ? Field::INT32 : Field::UINT32;
-        case 8: return is_signed ? Field::INT64 : Field::UINT64;
-        default: return 0;
+        case 1:
+            return is_signed ? Field::INT8 : Field::UINT8;
+        case 2:
+            return is_signed ? Field::INT16 : Field::UINT16;
+        case 4:
+            return is_signed ? Field::INT32 : Field::UINT32;
+        case 8:
+            return is_signed ? Field::INT64 : Field::UINT64;
+        default:
+            return 0;
     }
 }
 
@@ -81,17 +93,28 @@ double load(const std::uint8_t* p) {
 
 double value_as_double(const std::uint8_t* p, std::uint8_t datatype) {
     switch (datatype) {
-        case Field::INT8: return load<std::int8_t>(p);
-        case Field::UINT8: return load<std::uint8_t>(p);
-        case Field::INT16: return load<std::int16_t>(p);
-        case Field::UINT16: return load<std::uint16_t>(p);
-        case Field::INT32: return load<std::int32_t>(p);
-        case Field::UINT32: return load<std::uint32_t>(p);
-        case Field::FLOAT32: return load<float>(p);
-        case Field::FLOAT64: return load<double>(p);
-        case Field::INT64: return load<std::int64_t>(p);
-        case Field::UINT64: return load<std::uint64_t>(p);
-        default: return std::nan("");
+        case Field::INT8:
+            return load<std::int8_t>(p);
+        case Field::UINT8:
+            return load<std::uint8_t>(p);
+        case Field::INT16:
+            return load<std::int16_t>(p);
+        case Field::UINT16:
+            return load<std::uint16_t>(p);
+        case Field::INT32:
+            return load<std::int32_t>(p);
+        case Field::UINT32:
+            return load<std::uint32_t>(p);
+        case Field::FLOAT32:
+            return load<float>(p);
+        case Field::FLOAT64:
+            return load<double>(p);
+        case Field::INT64:
+            return load<std::int64_t>(p);
+        case Field::UINT64:
+            return load<std::uint64_t>(p);
+        default:
+            return std::nan("");
     }
 }
 
@@ -133,8 +156,8 @@ void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
     for (std::size_t j = 0; j < indices.size(); ++j) {
         const std::uint32_t i = indices[j];
         if (i >= n || (j > 0 && i <= indices[j - 1])) {
-            throw Error("keep_points: indices must ascend and be < " + std::to_string(n) + ", got " +
-                        std::to_string(i) + " at position " + std::to_string(j));
+            throw Error("keep_points: indices must ascend and be < " + std::to_string(n) +
+                        ", got " + std::to_string(i) + " at position " + std::to_string(j));
         }
         if (i != j) {  // i > j: the row moves towards the front over rows already kept
             std::memmove(data + j * step, data + std::size_t{i} * step, step);

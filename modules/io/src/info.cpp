@@ -1,7 +1,7 @@
-#include <pc/io/info.h>
-
 #include <cmath>
 #include <limits>
+
+#include <pc/io/info.h>
 
 namespace pc::io {
 

@@ -1,9 +1,8 @@
-#include <pc/io/lzf.h>
-
 #include <cstring>
 #include <string>
 
 #include <pc/core/error.h>
+#include <pc/io/lzf.h>
 
 namespace pc::io {
 
@@ -107,8 +106,8 @@ void lzf_decompress(std::span<const std::uint8_t> in, std::span<std::uint8_t> ou
         const std::size_t distance = ((ctrl & 0x1f) << 8) + in[ip++] + 1;
         len += 2;
         if (distance > op) {
-            throw corrupt("back-reference " + std::to_string(distance) + " B before the output start",
-                          ip);
+            throw corrupt(
+                "back-reference " + std::to_string(distance) + " B before the output start", ip);
         }
         if (op + len > out_n) {
             throw corrupt("output exceeds the declared " + std::to_string(out_n) + " B", ip);

@@ -70,33 +70,66 @@ void append_real(const std::uint8_t* src, std::string& out) {
 
 bool parse_value(std::string_view tok, std::uint8_t datatype, std::uint8_t* dst) {
     switch (datatype) {
-        case Field::INT8: return store_int<std::int8_t>(tok, dst);
-        case Field::UINT8: return store_int<std::uint8_t>(tok, dst);
-        case Field::INT16: return store_int<std::int16_t>(tok, dst);
-        case Field::UINT16: return store_int<std::uint16_t>(tok, dst);
-        case Field::INT32: return store_int<std::int32_t>(tok, dst);
-        case Field::UINT32: return store_int<std::uint32_t>(tok, dst);
-        case Field::INT64: return store_int<std::int64_t>(tok, dst);
-        case Field::UINT64: return store_int<std::uint64_t>(tok, dst);
-        case Field::FLOAT32: return store_real<float>(tok, dst);
-        case Field::FLOAT64: return store_real<double>(tok, dst);
-        default: return false;
+        case Field::INT8:
+            return store_int<std::int8_t>(tok, dst);
+        case Field::UINT8:
+            return store_int<std::uint8_t>(tok, dst);
+        case Field::INT16:
+            return store_int<std::int16_t>(tok, dst);
+        case Field::UINT16:
+            return store_int<std::uint16_t>(tok, dst);
+        case Field::INT32:
+            return store_int<std::int32_t>(tok, dst);
+        case Field::UINT32:
+            return store_int<std::uint32_t>(tok, dst);
+        case Field::INT64:
+            return store_int<std::int64_t>(tok, dst);
+        case Field::UINT64:
+            return store_int<std::uint64_t>(tok, dst);
+        case Field::FLOAT32:
+            return store_real<float>(tok, dst);
+        case Field::FLOAT64:
+            return store_real<double>(tok, dst);
+        default:
+            return false;
     }
 }
 
 void format_value(const std::uint8_t* src, std::uint8_t datatype, std::string& out) {
     switch (datatype) {
-        case Field::INT8: append_int<std::int8_t>(src, out); break;
-        case Field::UINT8: append_int<std::uint8_t>(src, out); break;
-        case Field::INT16: append_int<std::int16_t>(src, out); break;
-        case Field::UINT16: append_int<std::uint16_t>(src, out); break;
-        case Field::INT32: append_int<std::int32_t>(src, out); break;
-        case Field::UINT32: append_int<std::uint32_t>(src, out); break;
-        case Field::INT64: append_int<std::int64_t>(src, out); break;
-        case Field::UINT64: append_int<std::uint64_t>(src, out); break;
-        case Field::FLOAT32: append_real<float>(src, out); break;
-        case Field::FLOAT64: append_real<double>(src, out); break;
-        default: out += "?"; break;
+        case Field::INT8:
+            append_int<std::int8_t>(src, out);
+            break;
+        case Field::UINT8:
+            append_int<std::uint8_t>(src, out);
+            break;
+        case Field::INT16:
+            append_int<std::int16_t>(src, out);
+            break;
+        case Field::UINT16:
+            append_int<std::uint16_t>(src, out);
+            break;
+        case Field::INT32:
+            append_int<std::int32_t>(src, out);
+            break;
+        case Field::UINT32:
+            append_int<std::uint32_t>(src, out);
+            break;
+        case Field::INT64:
+            append_int<std::int64_t>(src, out);
+            break;
+        case Field::UINT64:
+            append_int<std::uint64_t>(src, out);
+            break;
+        case Field::FLOAT32:
+            append_real<float>(src, out);
+            break;
+        case Field::FLOAT64:
+            append_real<double>(src, out);
+            break;
+        default:
+            out += "?";
+            break;
     }
 }
 

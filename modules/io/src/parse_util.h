@@ -12,7 +12,8 @@
 
 namespace pc::io::detail {
 
-/// One line of a buffer, without its '\n' and a trailing '\r'. `next` is where the next line starts.
+/// One line of a buffer, without its '\n' and a trailing '\r'. `next` is where the next line
+/// starts.
 struct LineCursor {
     std::string_view bytes;
     std::size_t pos = 0;
@@ -34,7 +35,9 @@ struct LineCursor {
     }
 };
 
-inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+inline bool is_blank(char c) {
+    return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
 
 /// Splits on blanks (and on `extra` separators) without allocating: call next() until false.
 struct Tokens {

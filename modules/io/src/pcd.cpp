@@ -1,5 +1,3 @@
-#include <pc/io/pcd.h>
-
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -8,6 +6,7 @@
 
 #include <pc/core/error.h>
 #include <pc/io/lzf.h>
+#include <pc/io/pcd.h>
 
 #include "parse_util.h"
 
@@ -181,8 +180,9 @@ Layout validate(const Header& h, std::vector<std::string>& notes) {
         const std::uint8_t dt =
             h.sizes[i] > 8 ? 0 : datatype_of(h.types[i], static_cast<std::size_t>(h.sizes[i]));
         if (dt == 0) {
-            throw IoError("PCD header: field '" + name + "' has TYPE " + h.types[i] + " with SIZE " +
-                          std::to_string(h.sizes[i]) + " (valid: I/U 1,2,4,8; F 4,8)");
+            throw IoError("PCD header: field '" + name + "' has TYPE " + h.types[i] +
+                          " with SIZE " + std::to_string(h.sizes[i]) +
+                          " (valid: I/U 1,2,4,8; F 4,8)");
         }
         if (count < 1 || count > kMaxCount) {
             throw IoError("PCD header: COUNT of field '" + name + "' must be 1.." +
@@ -246,8 +246,8 @@ Layout validate(const Header& h, std::vector<std::string>& notes) {
 void read_ascii(std::string_view bytes, const Header& h, const Layout& l, Blob& blob) {
     const std::uint64_t available = bytes.size() - h.body_offset;
     // Each value needs at least one character and one separator: bound N before allocating.
-    const std::uint64_t min_bytes = checked_mul(checked_mul(l.n, l.values_per_row, "ASCII body"),
-                                                2, "ASCII body");
+    const std::uint64_t min_bytes =
+        checked_mul(checked_mul(l.n, l.values_per_row, "ASCII body"), 2, "ASCII body");
     if (l.n > 0 && min_bytes > available + 1) {
         throw IoError("truncated ascii body: header declares " + std::to_string(l.n) +
                       " points x " + std::to_string(l.values_per_row) + " values, only " +
@@ -299,8 +299,8 @@ void read_ascii(std::string_view bytes, const Header& h, const Layout& l, Blob& 
         ++row;
     }
     if (row != l.n) {
-        throw IoError("truncated ascii body: header declares " + std::to_string(l.n) +
-                      " points, " + std::to_string(row) + " rows present");
+        throw IoError("truncated ascii body: header declares " + std::to_string(l.n) + " points, " +
+                      std::to_string(row) + " rows present");
     }
 }
 
@@ -513,7 +513,8 @@ std::optional<PcdStart> start_binary_pcd(std::string_view prefix) {
         }
         PcdStart s;
         const Layout l = validate(h, s.result.notes);
-        if (l.point_step != 0 && l.n > (std::numeric_limits<std::uint64_t>::max() - h.body_offset) / l.point_step) {
+        if (l.point_step != 0 &&
+            l.n > (std::numeric_limits<std::uint64_t>::max() - h.body_offset) / l.point_step) {
             return std::nullopt;
         }
         set_shell(h, l, s.result.blob);

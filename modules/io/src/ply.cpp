@@ -1,5 +1,3 @@
-#include <pc/io/ply.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -7,6 +5,7 @@
 #include <set>
 
 #include <pc/core/error.h>
+#include <pc/io/ply.h>
 
 #include "parse_util.h"
 
@@ -43,11 +42,11 @@ struct Header {
 
 std::uint8_t ply_type(std::string_view t) {
     static const std::pair<std::string_view, std::uint8_t> kTypes[] = {
-        {"char", Field::INT8},     {"int8", Field::INT8},       {"uchar", Field::UINT8},
-        {"uint8", Field::UINT8},   {"short", Field::INT16},     {"int16", Field::INT16},
-        {"ushort", Field::UINT16}, {"uint16", Field::UINT16},   {"int", Field::INT32},
-        {"int32", Field::INT32},   {"uint", Field::UINT32},     {"uint32", Field::UINT32},
-        {"float", Field::FLOAT32}, {"float32", Field::FLOAT32}, {"double", Field::FLOAT64},
+        {"char", Field::INT8},      {"int8", Field::INT8},       {"uchar", Field::UINT8},
+        {"uint8", Field::UINT8},    {"short", Field::INT16},     {"int16", Field::INT16},
+        {"ushort", Field::UINT16},  {"uint16", Field::UINT16},   {"int", Field::INT32},
+        {"int32", Field::INT32},    {"uint", Field::UINT32},     {"uint32", Field::UINT32},
+        {"float", Field::FLOAT32},  {"float32", Field::FLOAT32}, {"double", Field::FLOAT64},
         {"float64", Field::FLOAT64}};
     for (const auto& [name, type] : kTypes) {
         if (name == t) {
@@ -59,15 +58,24 @@ std::uint8_t ply_type(std::string_view t) {
 
 const char* ply_type_name(std::uint8_t datatype) {
     switch (datatype) {
-        case Field::INT8: return "char";
-        case Field::UINT8: return "uchar";
-        case Field::INT16: return "short";
-        case Field::UINT16: return "ushort";
-        case Field::INT32: return "int";
-        case Field::UINT32: return "uint";
-        case Field::FLOAT32: return "float";
-        case Field::FLOAT64: return "double";
-        default: return nullptr;
+        case Field::INT8:
+            return "char";
+        case Field::UINT8:
+            return "uchar";
+        case Field::INT16:
+            return "short";
+        case Field::UINT16:
+            return "ushort";
+        case Field::INT32:
+            return "int";
+        case Field::UINT32:
+            return "uint";
+        case Field::FLOAT32:
+            return "float";
+        case Field::FLOAT64:
+            return "double";
+        default:
+            return nullptr;
     }
 }
 
@@ -163,10 +171,10 @@ struct VertexLayout {
     std::vector<Field> fields;
     std::vector<Target> targets;  // one per vertex property
     std::size_t point_step = 0;
-    std::size_t row_bytes = 0;  // binary bytes of one vertex row
+    std::size_t row_bytes = 0;                       // binary bytes of one vertex row
     std::optional<std::array<std::size_t, 3>> f_dc;  // offsets of f_dc_0..2, for derived rgb
-    std::array<std::uint8_t, 3> f_dc_type{};          // their datatypes (F4 or F8)
-    std::size_t rgb_from_dc = 0;                      // offset of the derived rgb field
+    std::array<std::uint8_t, 3> f_dc_type{};         // their datatypes (F4 or F8)
+    std::size_t rgb_from_dc = 0;                     // offset of the derived rgb field
 };
 
 void add_field(VertexLayout& v, const std::string& name, std::uint8_t type) {
@@ -194,7 +202,8 @@ VertexLayout vertex_layout(const Element& e) {
     };
     for (const auto& p : e.props) {
         if (p.count_type != 0) {
-            throw IoError("PLY vertex property '" + p.name + "' is a list; lists are not supported "
+            throw IoError("PLY vertex property '" + p.name +
+                          "' is a list; lists are not supported "
                           "on vertices");
         }
         if (!names.insert(p.name).second) {
@@ -217,8 +226,8 @@ VertexLayout vertex_layout(const Element& e) {
     std::size_t colour_offset = 0;
     for (const auto& p : e.props) {
         Target t;
-        const bool is_colour = packed && (&p == red || &p == green || &p == blue ||
-                                          (packed_alpha && &p == alpha));
+        const bool is_colour =
+            packed && (&p == red || &p == green || &p == blue || (packed_alpha && &p == alpha));
         if (is_colour) {
             if (colour_offset == 0 && find_if(v.fields.begin(), v.fields.end(), [](auto& f) {
                                           return f.name == "rgb" || f.name == "rgba";
@@ -295,8 +304,7 @@ std::size_t skip_binary(const Element& e, std::string_view bytes, std::size_t po
         const std::uint64_t need = checked_mul(e.count, fixed, "PLY element size");
         if (need > available) {
             throw IoError("truncated PLY body: element '" + e.name + "' needs " +
-                          std::to_string(need) + " B, " + std::to_string(available) +
-                          " B present");
+                          std::to_string(need) + " B, " + std::to_string(available) + " B present");
         }
         return pos + need;
     }
@@ -365,8 +373,7 @@ ReadResult parse_ply(std::string_view bytes) {
     const std::uint64_t min_need = checked_mul(n, min_row, "PLY vertex data");
     if (min_need > available + (binary ? 0 : 1)) {
         throw IoError("truncated PLY body: header declares " + std::to_string(n) + " vertices x " +
-                      std::to_string(min_row) + " B, " + std::to_string(available) +
-                      " B present");
+                      std::to_string(min_row) + " B, " + std::to_string(available) + " B present");
     }
     blob.cloud.fields = v.fields;
     blob.cloud.point_step = static_cast<std::uint32_t>(v.point_step);
@@ -403,7 +410,8 @@ ReadResult parse_ply(std::string_view bytes) {
         if (pos != bytes.size()) {
             throw IoError(std::to_string(bytes.size() - pos) +
                           " B after the last PLY element: the element counts do not match the "
-                          "body (vertex count " + std::to_string(n) + ")");
+                          "body (vertex count " +
+                          std::to_string(n) + ")");
         }
     } else {
         r.format = "ply ascii";
@@ -441,8 +449,8 @@ ReadResult parse_ply(std::string_view bytes) {
                     std::uint8_t* target = t.colour_byte >= 0 ? tmp : dst + t.dst_offset;
                     if (!detail::parse_value(tok, p.type, target)) {
                         throw IoError("line " + std::to_string(cur.line_number) + ": " +
-                                      quote(tok) + " is not a valid " +
-                                      ply_type_name(p.type) + " for property '" + p.name + "'");
+                                      quote(tok) + " is not a valid " + ply_type_name(p.type) +
+                                      " for property '" + p.name + "'");
                     }
                     if (t.colour_byte >= 0) {
                         dst[t.dst_offset + t.colour_byte] = tmp[0];
@@ -514,7 +522,8 @@ void write_ply(const Blob& blob, bool binary, ByteSink& sink) {
     }
     std::string head = "ply\nformat ";
     head += binary ? "binary_little_endian" : "ascii";
-    head += " 1.0\ncomment written by pctools\nelement vertex " + std::to_string(blob.size()) + "\n";
+    head +=
+        " 1.0\ncomment written by pctools\nelement vertex " + std::to_string(blob.size()) + "\n";
     for (const auto& p : props) {
         head += std::string("property ") + ply_type_name(p.type) + " " + p.name + "\n";
     }

@@ -1,10 +1,9 @@
-#include <pc/io/points.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include <pc/core/error.h>
+#include <pc/io/points.h>
 
 namespace pc::io {
 
@@ -15,14 +14,46 @@ bool is_real(std::uint8_t t) { return t == Field::FLOAT32 || t == Field::FLOAT64
 /// Writes an integer value (exact in double: all PCD integer types up to 2^53) as `datatype`.
 void store_integer(double v, std::uint8_t datatype, std::uint8_t* dst) {
     switch (datatype) {
-        case Field::INT8: { const auto x = static_cast<std::int8_t>(v); std::memcpy(dst, &x, 1); break; }
-        case Field::UINT8: { const auto x = static_cast<std::uint8_t>(v); std::memcpy(dst, &x, 1); break; }
-        case Field::INT16: { const auto x = static_cast<std::int16_t>(v); std::memcpy(dst, &x, 2); break; }
-        case Field::UINT16: { const auto x = static_cast<std::uint16_t>(v); std::memcpy(dst, &x, 2); break; }
-        case Field::INT32: { const auto x = static_cast<std::int32_t>(v); std::memcpy(dst, &x, 4); break; }
-        case Field::UINT32: { const auto x = static_cast<std::uint32_t>(v); std::memcpy(dst, &x, 4); break; }
-        case Field::INT64: { const auto x = static_cast<std::int64_t>(v); std::memcpy(dst, &x, 8); break; }
-        default: { const auto x = static_cast<std::uint64_t>(v); std::memcpy(dst, &x, 8); break; }
+        case Field::INT8: {
+            const auto x = static_cast<std::int8_t>(v);
+            std::memcpy(dst, &x, 1);
+            break;
+        }
+        case Field::UINT8: {
+            const auto x = static_cast<std::uint8_t>(v);
+            std::memcpy(dst, &x, 1);
+            break;
+        }
+        case Field::INT16: {
+            const auto x = static_cast<std::int16_t>(v);
+            std::memcpy(dst, &x, 2);
+            break;
+        }
+        case Field::UINT16: {
+            const auto x = static_cast<std::uint16_t>(v);
+            std::memcpy(dst, &x, 2);
+            break;
+        }
+        case Field::INT32: {
+            const auto x = static_cast<std::int32_t>(v);
+            std::memcpy(dst, &x, 4);
+            break;
+        }
+        case Field::UINT32: {
+            const auto x = static_cast<std::uint32_t>(v);
+            std::memcpy(dst, &x, 4);
+            break;
+        }
+        case Field::INT64: {
+            const auto x = static_cast<std::int64_t>(v);
+            std::memcpy(dst, &x, 8);
+            break;
+        }
+        default: {
+            const auto x = static_cast<std::uint64_t>(v);
+            std::memcpy(dst, &x, 8);
+            break;
+        }
     }
 }
 
@@ -84,10 +115,12 @@ XyzSortable::XyzSortable(Blob& blob) {
     bool consecutive = true;
     for (int a = 0; a < 3; ++a) {
         consecutive = consecutive && axes[a] != nullptr && axes[a]->datatype == Field::FLOAT32 &&
-                      axes[a]->count == 1 && axes[a]->offset == axes[0]->offset + 4 * static_cast<std::uint32_t>(a);
+                      axes[a]->count == 1 &&
+                      axes[a]->offset == axes[0]->offset + 4 * static_cast<std::uint32_t>(a);
     }
     if (consecutive) {
-        records_ = XyzRecords(blob.cloud.data.data(), blob.cloud.point_step, blob.size(), axes[0]->offset);
+        records_ =
+            XyzRecords(blob.cloud.data.data(), blob.cloud.point_step, blob.size(), axes[0]->offset);
         if (records_.aligned()) {
             return;
         }
@@ -147,8 +180,8 @@ std::vector<std::uint32_t> labels(const Blob& blob, const std::string& name) {
     const std::size_t n = blob.size();
     std::vector<std::uint32_t> out(n);
     for (std::size_t i = 0; i < n; ++i) {
-        const double v = value_as_double(&blob.cloud.data[i * blob.cloud.point_step + f->offset],
-                                         f->datatype);
+        const double v =
+            value_as_double(&blob.cloud.data[i * blob.cloud.point_step + f->offset], f->datatype);
         if (v < 0 || v > 4294967295.0) {
             throw IoError("field '" + name + "' of point " + std::to_string(i) + " is " +
                           format_number(v) + ", outside 0..4294967295");
@@ -185,7 +218,9 @@ void for_each_mode(const std::vector<Vote>& votes, GroupOf group_of, Found found
 
 }  // namespace
 
-Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::uint32_t group_count) {
+Blob aggregate(const Blob& blob,
+               const std::vector<std::uint32_t>& group,
+               std::uint32_t group_count) {
     const std::size_t n = blob.size();
     if (group.size() != n) {
         throw Error("aggregate: group must have one entry per point");
@@ -263,18 +298,22 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
                         // so that the word orders as the value does.
                         const double v = value_as_double(src + i * step + off, f.datatype);
                         const auto ordered = static_cast<std::uint32_t>(
-                            is_signed ? static_cast<std::int64_t>(v) + (std::int64_t{1} << 31) : static_cast<std::int64_t>(v));
+                            is_signed ? static_cast<std::int64_t>(v) + (std::int64_t{1} << 31)
+                                      : static_cast<std::int64_t>(v));
                         votes.push_back((std::uint64_t{group[i]} << 32) | ordered);
                     }
                 }
                 std::sort(votes.begin(), votes.end());
-                for_each_mode(votes, [&](std::uint64_t w) { return static_cast<std::uint32_t>(w >> 32); },
-                              [&](std::uint32_t g, std::uint64_t w) {
-                                  const auto ordered = static_cast<std::uint32_t>(w);
-                                  const double v = is_signed ? static_cast<double>(static_cast<std::int64_t>(ordered) - (std::int64_t{1} << 31))
-                                                             : static_cast<double>(ordered);
-                                  store_integer(v, f.datatype, dst + g * step + off);
-                              });
+                for_each_mode(
+                    votes, [&](std::uint64_t w) { return static_cast<std::uint32_t>(w >> 32); },
+                    [&](std::uint32_t g, std::uint64_t w) {
+                        const auto ordered = static_cast<std::uint32_t>(w);
+                        const double v =
+                            is_signed ? static_cast<double>(static_cast<std::int64_t>(ordered) -
+                                                            (std::int64_t{1} << 31))
+                                      : static_cast<double>(ordered);
+                        store_integer(v, f.datatype, dst + g * step + off);
+                    });
                 continue;
             }
             std::vector<std::pair<std::uint32_t, double>> votes;
@@ -285,8 +324,11 @@ Blob aggregate(const Blob& blob, const std::vector<std::uint32_t>& group, std::u
                 }
             }
             std::sort(votes.begin(), votes.end());
-            for_each_mode(votes, [](const auto& v) { return v.first; },
-                          [&](std::uint32_t g, const auto& v) { store_integer(v.second, f.datatype, dst + g * step + off); });
+            for_each_mode(
+                votes, [](const auto& v) { return v.first; },
+                [&](std::uint32_t g, const auto& v) {
+                    store_integer(v.second, f.datatype, dst + g * step + off);
+                });
         }
     }
     update_is_dense(out);

@@ -1,10 +1,3 @@
-#include <pc/io/read.h>
-
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
@@ -12,9 +5,15 @@
 #include <optional>
 #include <utility>
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <pc/core/error.h>
 #include <pc/io/pcd.h>
 #include <pc/io/ply.h>
+#include <pc/io/read.h>
 #include <pc/io/text.h>
 
 #include "parse_util.h"
@@ -25,9 +24,9 @@ namespace {
 
 enum class Format { kPcd, kPly, kText };
 
-constexpr std::string_view kPcdKeywords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE",   "TYPE",
-                                             "COUNT",   "WIDTH",  "HEIGHT",  "POINTS", "VIEWPOINT",
-                                             "DATA"};
+constexpr std::string_view kPcdKeywords[] = {"VERSION", "FIELDS",    "COLUMNS", "SIZE",
+                                             "TYPE",    "COUNT",     "WIDTH",   "HEIGHT",
+                                             "POINTS",  "VIEWPOINT", "DATA"};
 
 bool is_name(std::string_view tok) {
     return std::all_of(tok.begin(), tok.end(), [](char c) {
@@ -69,8 +68,7 @@ Format detect(std::string_view bytes) {
         }
         break;
     }
-    throw IoError("not a PCD, PLY or XYZ text file (starts with " + detail::quote(bytes, 16) +
-                  ")");
+    throw IoError("not a PCD, PLY or XYZ text file (starts with " + detail::quote(bytes, 16) + ")");
 }
 
 }  // namespace
@@ -169,7 +167,8 @@ struct InputReader {
     [[nodiscard]] bool regular() const { return S_ISREG(st.st_mode) && st.st_size > 0; }
 
     [[noreturn]] void over_limit() const {
-        throw IoError("input exceeds the limit of " + std::to_string(max_bytes) + " B (--max-input-bytes)");
+        throw IoError("input exceeds the limit of " + std::to_string(max_bytes) +
+                      " B (--max-input-bytes)");
     }
 
     /// One read(2) into `to` (at most `n` bytes), retried on EINTR; 0 at the end of the input.
@@ -210,7 +209,8 @@ struct InputReader {
             if (in.size_ >= max_bytes) {
                 over_limit();
             }
-            const auto capacity = static_cast<std::size_t>(std::min<std::uint64_t>(in.capacity_ * 2, max_bytes + 1));
+            const auto capacity =
+                static_cast<std::size_t>(std::min<std::uint64_t>(in.capacity_ * 2, max_bytes + 1));
             char* grown = static_cast<char*>(std::realloc(in.data_, capacity));
             if (grown == nullptr) {
                 throw std::bad_alloc();
@@ -258,8 +258,10 @@ struct InputReader {
             return std::nullopt;
         }
         prefault(data.data(), start.body_bytes);
-        const std::size_t in_prefix = std::min<std::uint64_t>(prefix.size() - start.body_offset, start.body_bytes);
-        data.assign(prefix.data() + start.body_offset, prefix.data() + start.body_offset + in_prefix);
+        const std::size_t in_prefix =
+            std::min<std::uint64_t>(prefix.size() - start.body_offset, start.body_bytes);
+        data.assign(prefix.data() + start.body_offset,
+                    prefix.data() + start.body_offset + in_prefix);
         constexpr std::size_t kStep = std::size_t{8} << 20;
         while (data.size() < start.body_bytes) {
             const std::size_t filled = data.size();
@@ -267,9 +269,11 @@ struct InputReader {
             for (std::size_t at = filled; at < data.size();) {
                 const std::size_t n = read_some(data.data() + at, data.size() - at);
                 if (n == 0) {
-                    throw IoError("truncated binary body: header declares " + std::to_string(points) +
-                                  " points x " + std::to_string(blob.cloud.point_step) + " B = " +
-                                  std::to_string(start.body_bytes) + " B, " + std::to_string(at) + " B present");
+                    throw IoError("truncated binary body: header declares " +
+                                  std::to_string(points) + " points x " +
+                                  std::to_string(blob.cloud.point_step) +
+                                  " B = " + std::to_string(start.body_bytes) + " B, " +
+                                  std::to_string(at) + " B present");
                 }
                 at += n;
             }
@@ -283,7 +287,8 @@ struct InputReader {
             }
         }
         if (trailing > 0) {
-            start.result.notes.push_back(std::to_string(trailing) + " trailing bytes after the binary body");
+            start.result.notes.push_back(std::to_string(trailing) +
+                                         " trailing bytes after the binary body");
         }
         update_is_dense(blob);
         return std::move(start.result);
@@ -294,9 +299,12 @@ struct InputReader {
 
 ReadResult parse_cloud(std::string_view bytes) {
     switch (detect(bytes)) {
-        case Format::kPcd: return parse_pcd(bytes);
-        case Format::kPly: return parse_ply(bytes);
-        case Format::kText: return parse_text(bytes);
+        case Format::kPcd:
+            return parse_pcd(bytes);
+        case Format::kPly:
+            return parse_ply(bytes);
+        case Format::kText:
+            return parse_text(bytes);
     }
     throw IoError("unreachable");
 }
@@ -323,7 +331,8 @@ ReadResult read_cloud(const std::string& path, std::uint64_t max_bytes) {
                 break;
             }
         }
-        if (reader.regular() && bytes.view().size() < static_cast<std::uint64_t>(reader.st.st_size)) {
+        if (reader.regular() &&
+            bytes.view().size() < static_cast<std::uint64_t>(reader.st.st_size)) {
             InputBytes mapped;
             if (reader.map(mapped)) {  // the rest of a large text or PLY file: mapped, not copied
                 return parse_cloud(mapped.view());

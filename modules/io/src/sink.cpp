@@ -1,11 +1,10 @@
-#include <pc/io/sink.h>
-
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstring>
 
+#include <unistd.h>
+
 #include <pc/core/error.h>
+#include <pc/io/sink.h>
 
 namespace pc::io {
 

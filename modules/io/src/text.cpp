@@ -1,10 +1,9 @@
-#include <pc/io/text.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
 #include <pc/core/error.h>
+#include <pc/io/text.h>
 
 #include "parse_util.h"
 
@@ -65,7 +64,8 @@ ReadResult parse_text(std::string_view bytes) {
             if (got != 3 && got != 4 && got != 6) {
                 throw IoError("line " + std::to_string(cur.line_number) +
                               ": expected 3 (x y z), 4 (x y z intensity) or 6 (x y z r g b) "
-                              "values, found " + std::to_string(got));
+                              "values, found " +
+                              std::to_string(got));
             }
             columns = got;
         } else if (got != columns) {
@@ -118,9 +118,10 @@ ReadResult parse_text(std::string_view bytes) {
             for (int c = 0; c < 3; ++c) {
                 const double v = colour_is_real ? row[3 + c] * 255.0 : row[3 + c];
                 if (!(v >= -0.5 && v < 255.5) || (!colour_is_real && v != std::floor(v))) {
-                    throw IoError("row " + std::to_string(i + 1) + ": colour value " +
-                                  format_number(row[3 + c]) +
-                                  (colour_is_real ? " is outside 0..1" : " is not an integer 0..255"));
+                    throw IoError(
+                        "row " + std::to_string(i + 1) + ": colour value " +
+                        format_number(row[3 + c]) +
+                        (colour_is_real ? " is outside 0..1" : " is not an integer 0..255"));
                 }
                 word |= static_cast<std::uint32_t>(std::lround(v)) << (8 * (2 - c));
             }

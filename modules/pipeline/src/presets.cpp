@@ -1,9 +1,8 @@
-#include <pc/pipeline/presets.h>
-
 #include <charconv>
 #include <cmath>
 
 #include <pc/core/error.h>
+#include <pc/pipeline/presets.h>
 
 namespace pc::pipeline {
 
@@ -13,7 +12,8 @@ double cli_number(const std::string& option, const std::string& text) {
     double v = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-        throw InvalidArgument("--" + option + ": expected a number, 'auto', 'spacing' or 'Nxs', got '" + text + "'");
+        throw InvalidArgument(
+            "--" + option + ": expected a number, 'auto', 'spacing' or 'Nxs', got '" + text + "'");
     }
     return v;
 }
@@ -21,7 +21,8 @@ double cli_number(const std::string& option, const std::string& text) {
 }  // namespace
 
 const std::vector<std::string>& preset_names() {
-    static const std::vector<std::string> names = {"dense", "paper-dense", "paper-sparse", "invnerfseg"};
+    static const std::vector<std::string> names = {"dense", "paper-dense", "paper-sparse",
+                                                   "invnerfseg"};
     return names;
 }
 
@@ -44,9 +45,12 @@ void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsR
 
 std::string eps_text(const segmentation::DbscanParams& dbscan, const EpsRule& rule) {
     switch (rule.mode) {
-        case EpsRule::Mode::kKnee: return "auto";
-        case EpsRule::Mode::kSpacing: return format_number(rule.factor) + "xs";
-        case EpsRule::Mode::kFixed: break;
+        case EpsRule::Mode::kKnee:
+            return "auto";
+        case EpsRule::Mode::kSpacing:
+            return format_number(rule.factor) + "xs";
+        case EpsRule::Mode::kFixed:
+            break;
     }
     return format_number(dbscan.eps);
 }
@@ -69,8 +73,8 @@ ChainParams preset(std::string_view name) {
         return p;  // permissive: no minimum cluster size anywhere (paper 2.4)
     }
     if (name == "paper-sparse") {
-        p.dbscan.eps = 0.030;         // paper 2.5: eps raised from 0.015 to 0.030
-        p.split->volume_factor = 5.0; // "split only if volume exceeded five times the median"
+        p.dbscan.eps = 0.030;          // paper 2.5: eps raised from 0.015 to 0.030
+        p.split->volume_factor = 5.0;  // "split only if volume exceeded five times the median"
         return p;
     }
     if (name == "dense") {

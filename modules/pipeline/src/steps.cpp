@@ -1,14 +1,13 @@
-#include <pc/pipeline/steps.h>
-
 #include <cmath>
 #include <limits>
 
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
-#include <pc/search/spacing.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
+#include <pc/pipeline/steps.h>
+#include <pc/search/spacing.h>
 
 namespace pc::pipeline {
 
@@ -39,9 +38,9 @@ Step apply_crop(io::Blob in, const filters::CropParams& p) {
 
 Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
     const filters::VoxelResult v = filters::voxel_downsample(io::XyzPoints(in).view(), p);
-    return {io::aggregate(in, v.voxel, v.count),
-            "voxel: " + std::to_string(in.size()) + " points into " + std::to_string(v.count) +
-                " voxels of " + format_number(p.leaf)};
+    return {io::aggregate(in, v.voxel, v.count), "voxel: " + std::to_string(in.size()) +
+                                                     " points into " + std::to_string(v.count) +
+                                                     " voxels of " + format_number(p.leaf)};
 }
 
 Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
@@ -71,8 +70,8 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
         const double s = search::median_spacing(io::XyzPoints(in).view());
         // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
         p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
-        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) + " = " +
-               format_number(p.eps) + "; ";
+        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) +
+               " = " + format_number(p.eps) + "; ";
     }
     const segmentation::DbscanResult r = segmentation::dbscan(io::XyzSortable(in).records(), p);
     std::size_t noise = 0;
@@ -90,18 +89,21 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
     io::set_field(in, "label", r.labels);
-    const std::string how = p.rule == segmentation::SplitRule::kCores
-                                ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
-                                      ", estimated fruit radius " + format_number(r.fruit_radius) +
-                                      (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius) : "") + ")"
-                                : "splits (thresholds: points > " + format_number(r.size_threshold) +
-                                      ", AABB volume > " + format_number(r.volume_threshold) + ")";
-    return {std::move(in),
-            "recursive_split: " + std::to_string(r.splits) + " " + how + ", " + std::to_string(r.cluster_count) +
-                " clusters"};
+    const std::string how =
+        p.rule == segmentation::SplitRule::kCores
+            ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
+                  ", estimated fruit radius " + format_number(r.fruit_radius) +
+                  (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius)
+                                       : "") +
+                  ")"
+            : "splits (thresholds: points > " + format_number(r.size_threshold) +
+                  ", AABB volume > " + format_number(r.volume_threshold) + ")";
+    return {std::move(in), "recursive_split: " + std::to_string(r.splits) + " " + how + ", " +
+                               std::to_string(r.cluster_count) + " clusters"};
 }
 
-ChainResult run_chain(io::Blob in, const ChainParams& p,
+ChainResult run_chain(io::Blob in,
+                      const ChainParams& p,
                       const std::function<void(const std::string&)>& progress) {
     ChainResult out;
     io::Blob cur = std::move(in);

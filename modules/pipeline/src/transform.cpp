@@ -1,11 +1,10 @@
-#include <pc/pipeline/transform.h>
-
 #include <cmath>
 #include <cstring>
 
 #include <Eigen/LU>
 
 #include <pc/core/error.h>
+#include <pc/pipeline/transform.h>
 
 namespace pc::pipeline {
 

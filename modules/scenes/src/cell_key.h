@@ -7,7 +7,9 @@
 namespace pc::scenes {
 
 inline std::uint64_t cell_key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff; };
+    const auto u = [](std::int64_t v) {
+        return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff;
+    };
     return u(x) | (u(y) << 21) | (u(z) << 42);
 }
 

@@ -1,5 +1,3 @@
-#include <pc/scenes/render.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -9,6 +7,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/random.h>
+#include <pc/scenes/render.h>
 
 #include "cell_key.h"
 
@@ -45,7 +44,6 @@ struct Voxel {
     bool surface;  ///< a 6-neighbour lies outside the object
 };
 
-
 Vec3 centre_of(const Voxel& x, double v) {
     return {(x.i + 0.5) * v, (x.j + 0.5) * v, (x.k + 0.5) * v};
 }
@@ -53,8 +51,12 @@ Vec3 centre_of(const Voxel& x, double v) {
 /// Every lattice voxel whose centre lies inside the fruit (distance <= radius).
 std::vector<Voxel> fruit_voxels(const Fruit& f, double v) {
     std::vector<Voxel> out;
-    const auto lo = [&](int a) { return static_cast<std::int32_t>(std::floor((f.centre[a] - f.radius) / v)); };
-    const auto hi = [&](int a) { return static_cast<std::int32_t>(std::floor((f.centre[a] + f.radius) / v)); };
+    const auto lo = [&](int a) {
+        return static_cast<std::int32_t>(std::floor((f.centre[a] - f.radius) / v));
+    };
+    const auto hi = [&](int a) {
+        return static_cast<std::int32_t>(std::floor((f.centre[a] + f.radius) / v));
+    };
     const double r2 = f.radius * f.radius;
     const auto inside = [&](std::int32_t i, std::int32_t j, std::int32_t k) {
         const Vec3 d = sub({(i + 0.5) * v, (j + 0.5) * v, (k + 0.5) * v}, f.centre);
@@ -64,8 +66,9 @@ std::vector<Voxel> fruit_voxels(const Fruit& f, double v) {
         for (std::int32_t j = lo(1); j <= hi(1); ++j) {
             for (std::int32_t k = lo(2); k <= hi(2); ++k) {
                 if (inside(i, j, k)) {
-                    const bool surface = !inside(i - 1, j, k) || !inside(i + 1, j, k) || !inside(i, j - 1, k) ||
-                                         !inside(i, j + 1, k) || !inside(i, j, k - 1) || !inside(i, j, k + 1);
+                    const bool surface = !inside(i - 1, j, k) || !inside(i + 1, j, k) ||
+                                         !inside(i, j - 1, k) || !inside(i, j + 1, k) ||
+                                         !inside(i, j, k - 1) || !inside(i, j, k + 1);
                     out.push_back({i, j, k, surface});
                 }
             }
@@ -76,11 +79,18 @@ std::vector<Voxel> fruit_voxels(const Fruit& f, double v) {
 
 /// The lattice voxels a leaf disc passes through (the plane's distance to the voxel centre within
 /// the voxel's half-width along the normal, so rays cannot slip through), minus fruit voxels.
-std::vector<Voxel> leaf_voxels(const Leaf& l, double v, const std::unordered_set<std::uint64_t>& fruit) {
+std::vector<Voxel> leaf_voxels(const Leaf& l,
+                               double v,
+                               const std::unordered_set<std::uint64_t>& fruit) {
     std::vector<Voxel> out;
-    const double half = 0.5 * v * (std::abs(l.normal[0]) + std::abs(l.normal[1]) + std::abs(l.normal[2]));
-    const auto lo = [&](int a) { return static_cast<std::int32_t>(std::floor((l.centre[a] - l.radius) / v)); };
-    const auto hi = [&](int a) { return static_cast<std::int32_t>(std::floor((l.centre[a] + l.radius) / v)); };
+    const double half =
+        0.5 * v * (std::abs(l.normal[0]) + std::abs(l.normal[1]) + std::abs(l.normal[2]));
+    const auto lo = [&](int a) {
+        return static_cast<std::int32_t>(std::floor((l.centre[a] - l.radius) / v));
+    };
+    const auto hi = [&](int a) {
+        return static_cast<std::int32_t>(std::floor((l.centre[a] + l.radius) / v));
+    };
     for (std::int32_t i = lo(0); i <= hi(0); ++i) {
         for (std::int32_t j = lo(1); j <= hi(1); ++j) {
             for (std::int32_t k = lo(2); k <= hi(2); ++k) {
@@ -96,7 +106,9 @@ std::vector<Voxel> leaf_voxels(const Leaf& l, double v, const std::unordered_set
     return out;
 }
 
-std::uint8_t channel(double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); }
+std::uint8_t channel(double v) {
+    return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+}
 
 std::uint32_t pack(double r, double g, double b) {
     return (std::uint32_t{channel(r)} << 16) | (std::uint32_t{channel(g)} << 8) | channel(b);
@@ -107,7 +119,8 @@ class Output {
 public:
     Output(Rendered& out, Rng& rng) : out_(out), rng_(rng) {}
     void add(const Vec3& p, std::uint32_t rgb, std::uint32_t gt) {
-        out_.xyz.push_back({static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+        out_.xyz.push_back(
+            {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
         out_.rgb.push_back(rgb);
         out_.gt.push_back(gt);
     }
@@ -125,7 +138,8 @@ private:
 
 constexpr std::array<std::uint8_t, 3> kLeafRgb{60, 125, 45};
 
-/// Pinhole cameras on three rings (elevation 5°, 30°, 60°) around the canopy, looking at its centre; a z-buffer each.
+/// Pinhole cameras on three rings (elevation 5°, 30°, 60°) around the canopy, looking at its
+/// centre; a z-buffer each.
 class Cameras {
 public:
     Cameras(const Scene& s, const RenderParams& p) : voxel_(p.voxel) {
@@ -142,7 +156,8 @@ public:
             const double elevation = (c % 3 == 0 ? 5.0 : c % 3 == 1 ? 30.0 : 60.0) * kPi / 180;
             const double azimuth = 2 * kPi * c / p.cameras;
             const Vec3 eye{distance_ * std::cos(elevation) * std::cos(azimuth),
-                           distance_ * std::cos(elevation) * std::sin(azimuth), distance_ * std::sin(elevation)};
+                           distance_ * std::cos(elevation) * std::sin(azimuth),
+                           distance_ * std::sin(elevation)};
             View w;
             w.eye = eye;
             w.forward = unit(scaled(eye, -1));
@@ -161,7 +176,8 @@ public:
                        std::vector<std::uint32_t>& seen) const {
         const View& w = views_[c];
         const int width = 2 * half_width_ + 1;
-        std::vector<float> zbuf(static_cast<std::size_t>(width) * width, std::numeric_limits<float>::infinity());
+        std::vector<float> zbuf(static_cast<std::size_t>(width) * width,
+                                std::numeric_limits<float>::infinity());
         const double reach = 0.5 * std::sqrt(3.0) * voxel_ * focal_;
         for (const Vec3& p : occluders) {
             Projection q;
@@ -211,12 +227,14 @@ private:
 
 /// Degraded masks: keeps the fraction `keep` of a fruit's voxels nearest to 1-3 random spots on its
 /// surface (the parts the masks caught), so small fractions come out as separate fragments.
-std::vector<Voxel> degrade(const Fruit& f, const std::vector<Voxel>& voxels, double keep, double v, Rng& rng) {
+std::vector<Voxel> degrade(
+    const Fruit& f, const std::vector<Voxel>& voxels, double keep, double v, Rng& rng) {
     const auto spots = 1 + rng.below(3);
     std::vector<Vec3> at;
     for (std::uint64_t s = 0; s < spots; ++s) {
         const Vec3 d = rng.direction();
-        at.push_back({f.centre[0] + f.radius * d[0], f.centre[1] + f.radius * d[1], f.centre[2] + f.radius * d[2]});
+        at.push_back({f.centre[0] + f.radius * d[0], f.centre[1] + f.radius * d[1],
+                      f.centre[2] + f.radius * d[2]});
     }
     std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t n = 0; n < voxels.size(); ++n) {
@@ -229,7 +247,8 @@ std::vector<Voxel> degrade(const Fruit& f, const std::vector<Voxel>& voxels, dou
         order.emplace_back(best, n);
     }
     std::sort(order.begin(), order.end());
-    const auto kept = static_cast<std::size_t>(std::llround(keep * static_cast<double>(voxels.size())));
+    const auto kept =
+        static_cast<std::size_t>(std::llround(keep * static_cast<double>(voxels.size())));
     std::vector<Voxel> out;
     for (std::size_t n = 0; n < kept; ++n) {
         out.push_back(voxels[order[n].second]);
@@ -242,7 +261,8 @@ std::vector<Voxel> degrade(const Fruit& f, const std::vector<Voxel>& voxels, dou
 void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
     std::vector<std::uint32_t> order(s.fruits.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return s.fruits[a].centre[0] < s.fruits[b].centre[0]; });
+    std::sort(order.begin(), order.end(),
+              [&](auto a, auto b) { return s.fruits[a].centre[0] < s.fruits[b].centre[0]; });
     double r_max = 0;
     for (const auto& f : s.fruits) {
         r_max = std::max(r_max, f.radius);
@@ -257,13 +277,15 @@ void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
             const Vec3 axis = sub(fb.centre, fa.centre);
             const double length = std::sqrt(dot(axis, axis));
             const double small = std::min(fa.radius, fb.radius);
-            if (length - fa.radius - fb.radius >= p.bridge_gap * small || rng.uniform() >= p.bridge_probability) {
+            if (length - fa.radius - fb.radius >= p.bridge_gap * small ||
+                rng.uniform() >= p.bridge_probability) {
                 continue;
             }
             const Vec3 d = scaled(axis, 1.0 / length);
             const auto [e1, e2] = basis(d);
             const double reach = 0.6 * small;
-            const auto n = static_cast<int>(std::ceil(rng.uniform(0.5, 1.0) * kPi * reach * reach / (p.voxel * p.voxel)));
+            const auto n = static_cast<int>(
+                std::ceil(rng.uniform(0.5, 1.0) * kPi * reach * reach / (p.voxel * p.voxel)));
             const std::uint32_t rgb = out.shade(s.fruit_rgb, 0.85);
             for (int k = 0; k < n; ++k) {
                 const double rho = reach * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
@@ -297,9 +319,12 @@ Mode parse_mode(const std::string& text) {
 
 std::string mode_name(Mode mode) {
     switch (mode) {
-        case Mode::kExplicit: return "explicit";
-        case Mode::kImplicit: return "implicit";
-        case Mode::kDegraded: return "degraded";
+        case Mode::kExplicit:
+            return "explicit";
+        case Mode::kImplicit:
+            return "implicit";
+        case Mode::kDegraded:
+            return "degraded";
     }
     return "?";
 }
@@ -310,7 +335,8 @@ void RenderParams::validate() const {
     require(min_views >= 1 && min_views <= cameras, "min_views must be in 1..cameras");
     require(surface_noise >= 0 && surface_noise <= 10, "surface_noise must be in [0, 10] voxels");
     require(bridge_gap >= 0 && bridge_gap <= 10, "bridge_gap must be in [0, 10]");
-    require(bridge_probability >= 0 && bridge_probability <= 1, "bridge_probability must be in [0, 1]");
+    require(bridge_probability >= 0 && bridge_probability <= 1,
+            "bridge_probability must be in [0, 1]");
     require(floaters >= 0 && floaters <= 100, "floaters must be in [0, 100] per fruit");
     require(recall > 0 && recall <= 1, "recall must be in (0, 1]");
     require(leaf_leak >= 0 && leaf_leak <= 1, "leaf_leak must be in [0, 1]");
@@ -325,7 +351,8 @@ Rendered render(const Scene& s, const RenderParams& p) {
     for (const auto& f : s.fruits) {
         r_min = std::min(r_min, f.radius);
     }
-    require(s.fruits.empty() || r_min >= v, "the voxel must not be larger than the smallest fruit radius");
+    require(s.fruits.empty() || r_min >= v,
+            "the voxel must not be larger than the smallest fruit radius");
     Rendered out;
     Rng rng(p.seed, 2);
     Output emit(out, rng);
@@ -393,7 +420,8 @@ Rendered render(const Scene& s, const RenderParams& p) {
             }
         }
         add_bridges(s, p, rng, emit);
-        const auto blobs = static_cast<std::uint64_t>(std::llround(p.floaters * static_cast<double>(s.fruits.size())));
+        const auto blobs = static_cast<std::uint64_t>(
+            std::llround(p.floaters * static_cast<double>(s.fruits.size())));
         for (std::uint64_t b = 0; b < blobs; ++b) {
             const Vec3 d = rng.direction();
             const double u = std::cbrt(rng.uniform());
@@ -401,7 +429,9 @@ Rendered render(const Scene& s, const RenderParams& p) {
             const auto n = 5 + rng.below(30);
             const std::uint32_t rgb = emit.shade(s.fruit_rgb, 0.9);
             for (std::uint64_t k = 0; k < n; ++k) {
-                emit.add({c[0] + 0.006 * rng.normal(), c[1] + 0.006 * rng.normal(), c[2] + 0.006 * rng.normal()}, rgb, 0);
+                emit.add({c[0] + 0.006 * rng.normal(), c[1] + 0.006 * rng.normal(),
+                          c[2] + 0.006 * rng.normal()},
+                         rgb, 0);
             }
         }
     } else {
@@ -413,7 +443,8 @@ Rendered render(const Scene& s, const RenderParams& p) {
                 kept = r < 0.15 ? std::vector<Voxel>{} : degrade(s.fruits[f], fruit[f], r, v, rng);
             }
             for (const auto& x : kept) {
-                emit.add(centre_of(x, v), emit.shade(s.fruit_rgb, tone[f]), static_cast<std::uint32_t>(f + 1));
+                emit.add(centre_of(x, v), emit.shade(s.fruit_rgb, tone[f]),
+                         static_cast<std::uint32_t>(f + 1));
             }
         }
     }
@@ -434,14 +465,17 @@ Rendered render(const Scene& s, const RenderParams& p) {
         }
     }
     const double ground = 1.5 * std::max(s.canopy[0], s.canopy[1]);
-    const auto n_ground = static_cast<std::uint64_t>(std::llround(p.background * static_cast<double>(fruit_total)));
+    const auto n_ground =
+        static_cast<std::uint64_t>(std::llround(p.background * static_cast<double>(fruit_total)));
     for (std::uint64_t k = 0; k < n_ground; ++k) {
         const double rho = ground * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
         const double grey = rng.uniform(10, 70);
-        emit.add({rho * std::cos(phi), rho * std::sin(phi), -s.canopy[2] - 0.3 + 0.01 * rng.normal()},
-                 pack(grey, grey * rng.uniform(0.9, 1.1), grey * rng.uniform(0.9, 1.1)), 0);
+        emit.add(
+            {rho * std::cos(phi), rho * std::sin(phi), -s.canopy[2] - 0.3 + 0.01 * rng.normal()},
+            pack(grey, grey * rng.uniform(0.9, 1.1), grey * rng.uniform(0.9, 1.1)), 0);
     }
-    const auto n_out = static_cast<std::uint64_t>(std::llround(p.outliers * static_cast<double>(fruit_total)));
+    const auto n_out =
+        static_cast<std::uint64_t>(std::llround(p.outliers * static_cast<double>(fruit_total)));
     for (std::uint64_t k = 0; k < n_out; ++k) {
         emit.add({1.2 * s.canopy[0] * rng.uniform(-1, 1), 1.2 * s.canopy[1] * rng.uniform(-1, 1),
                   1.2 * s.canopy[2] * rng.uniform(-1, 1)},

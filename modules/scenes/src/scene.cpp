@@ -1,10 +1,9 @@
-#include <pc/scenes/scene.h>
-
 #include <cmath>
 #include <unordered_map>
 
 #include <pc/core/error.h>
 #include <pc/core/random.h>
+#include <pc/scenes/scene.h>
 
 #include "cell_key.h"
 
@@ -49,7 +48,9 @@ private:
     [[nodiscard]] std::int64_t coord(double v) const {
         return static_cast<std::int64_t>(std::floor(v / cell_));
     }
-    [[nodiscard]] std::uint64_t key(const Vec3& c) const { return cell_key(coord(c[0]), coord(c[1]), coord(c[2])); }
+    [[nodiscard]] std::uint64_t key(const Vec3& c) const {
+        return cell_key(coord(c[0]), coord(c[1]), coord(c[2]));
+    }
 
     double cell_;
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
@@ -108,7 +109,8 @@ SceneParams species(std::string_view name) {
         p.fruit_rgb = {195, 105, 155};
         return p;
     }
-    throw InvalidArgument("--species: unknown species '" + std::string(name) + "' (peach, apple, plum)");
+    throw InvalidArgument("--species: unknown species '" + std::string(name) +
+                          "' (peach, apple, plum)");
 }
 
 Scene make_scene(const SceneParams& p) {
@@ -143,7 +145,8 @@ Scene make_scene(const SceneParams& p) {
     const double shell3 = p.shell * p.shell * p.shell;
     while (s.fruits.size() < p.fruit_count) {
         const auto left = p.fruit_count - s.fruits.size();
-        const auto size = std::min<std::uint64_t>(left, p.bunch_min + rng.below(p.bunch_max - p.bunch_min + 1));
+        const auto size =
+            std::min<std::uint64_t>(left, p.bunch_min + rng.below(p.bunch_max - p.bunch_min + 1));
         const std::uint32_t bunch = s.bunch_count;
         const std::size_t first = s.fruits.size();
         for (int attempt = 0;; ++attempt) {
@@ -168,7 +171,8 @@ Scene make_scene(const SceneParams& p) {
                 const Vec3 d = rng.direction();
                 const double r = radius();
                 const double at = m.radius + r + rng.uniform(0, p.touch_gap);
-                const Vec3 c{m.centre[0] + at * d[0], m.centre[1] + at * d[1], m.centre[2] + at * d[2]};
+                const Vec3 c{m.centre[0] + at * d[0], m.centre[1] + at * d[1],
+                             m.centre[2] + at * d[2]};
                 if (inside_canopy(c, 1.1) && fits(c, r, bunch)) {
                     place(c, r, bunch);
                     break;
@@ -182,9 +186,10 @@ Scene make_scene(const SceneParams& p) {
     for (std::uint64_t k = 0; k < leaves; ++k) {
         const Vec3 d = rng.direction();
         const double u = std::cbrt(rng.uniform());
-        s.leaves.push_back({{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]},
-                            rng.direction(),
-                            p.leaf_radius * rng.uniform(0.7, 1.3)});
+        s.leaves.push_back(
+            {{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]},
+             rng.direction(),
+             p.leaf_radius * rng.uniform(0.7, 1.3)});
     }
     return s;
 }

@@ -1,5 +1,3 @@
-#include <pc/search/grid.h>
-
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -18,6 +16,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/radix_sort.h>
+#include <pc/search/grid.h>
 
 namespace pc::search {
 
@@ -78,7 +77,8 @@ double occupancy(const std::vector<std::array<double, 3>>& points, double cell) 
     for (const auto& v : points) {
         std::uint64_t key = 0;
         for (int a = 0; a < 3; ++a) {
-            key = (key << 21) | static_cast<std::uint64_t>(std::min<double>(std::floor(v[a] / cell), kAxisCells - 1));
+            key = (key << 21) | static_cast<std::uint64_t>(
+                                    std::min<double>(std::floor(v[a] / cell), kAxisCells - 1));
         }
         keys.push_back(key);
     }
@@ -119,7 +119,8 @@ double Grid::suggest_cell(const XyzView& cloud, double target) {
     const std::size_t wanted = std::min<std::size_t>(b.n, 20000);
     const double block = 8 * cell;
     std::vector<std::array<double, 3>> sample;
-    for (std::size_t stride = std::max<std::size_t>(1, b.n / 50000);; stride = std::max<std::size_t>(1, stride / 4)) {
+    for (std::size_t stride = std::max<std::size_t>(1, b.n / 50000);;
+         stride = std::max<std::size_t>(1, stride / 4)) {
         const std::uint64_t keep_below = ~std::uint64_t{0} / stride;
         sample.clear();
         for (std::size_t i = 0; i < cloud.size; ++i) {
@@ -130,7 +131,8 @@ double Grid::suggest_cell(const XyzView& cloud, double target) {
             const std::array<double, 3> v = {p.x - b.lo[0], p.y - b.lo[1], p.z - b.lo[2]};
             std::uint64_t block_key = 0;
             for (int a = 0; a < 3; ++a) {
-                block_key = (block_key << 21) | static_cast<std::uint64_t>(std::min<double>(v[a] / block, kAxisCells - 1));
+                block_key = (block_key << 21) | static_cast<std::uint64_t>(
+                                                    std::min<double>(v[a] / block, kAxisCells - 1));
             }
             if (stride == 1 || (block_key + 1) * 0x9E3779B97F4A7C15ull < keep_below) {
                 sample.push_back(v);
@@ -159,8 +161,11 @@ namespace {
 
 /// Open-addressing table of `count` keys (key_of(i) for i < count): slot holds i + 1, 0 = empty.
 template <class KeyOf>
-void build_table(std::size_t count, KeyOf key_of, std::vector<std::uint32_t>& table,
-                 std::uint64_t& mask, int& shift) {
+void build_table(std::size_t count,
+                 KeyOf key_of,
+                 std::vector<std::uint32_t>& table,
+                 std::uint64_t& mask,
+                 int& shift) {
     std::size_t cap = 16;
     int bits = 4;
     while (cap < 2 * count) {
@@ -217,7 +222,8 @@ void Grid::index_sorted(const Key* sorted, std::size_t n) {
     for (std::size_t s = 0; s < n; ++s) {
         if (s == 0 || sorted[s] != sorted[s - 1]) {
             const auto key = static_cast<std::uint64_t>(sorted[s]);
-            cells_.push_back({static_cast<std::uint32_t>(key), static_cast<std::uint32_t>(key >> 32),
+            cells_.push_back({static_cast<std::uint32_t>(key),
+                              static_cast<std::uint32_t>(key >> 32),
                               static_cast<std::uint32_t>(s)});
             if (s == 0 || (sorted[s] >> bits_[2]) != (sorted[s - 1] >> bits_[2])) {
                 row_begin_.push_back(static_cast<std::uint32_t>(cells_.size() - 1));
@@ -230,9 +236,9 @@ void Grid::index_sorted(const Key* sorted, std::size_t n) {
     for (std::size_t r = 0; r + 1 < row_begin_.size(); ++r) {
         row_key_[r] = cells_[row_begin_[r]].key() >> bits_[2];
     }
-    build_table(row_begin_.size() - 1,
-                [&](std::size_t r) { return row_key_[r]; }, row_table_,
-                row_mask_, row_shift_);
+    build_table(
+        row_begin_.size() - 1, [&](std::size_t r) { return row_key_[r]; }, row_table_, row_mask_,
+        row_shift_);
 }
 
 Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
@@ -292,7 +298,8 @@ Grid::Grid(const XyzView& cloud, double cell) : points_(cloud) {
     xyz_at_ = xyz_.data();
 }
 
-Grid::Grid(XyzRecords& records, double cell) : sorted_(records), in_place_(true), has_points_(false) {
+Grid::Grid(XyzRecords& records, double cell)
+    : sorted_(records), in_place_(true), has_points_(false) {
     if (!records.aligned()) {
         throw std::logic_error("grid: records sorted in place need 4-aligned x y z floats");
     }
@@ -312,7 +319,8 @@ Grid::Grid(XyzRecords& records, double cell) : sorted_(records), in_place_(true)
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < count; ++i) {
             const pcl::PointXYZ p = view[static_cast<std::size_t>(i)];
-            keys[i] = is_finite(p) ? static_cast<Key>(cell_key(p)) : static_cast<Key>(Key{1} << key_bits);
+            keys[i] =
+                is_finite(p) ? static_cast<Key>(cell_key(p)) : static_cast<Key>(Key{1} << key_bits);
             order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
         }
         flag_sort(records.base, records.stride, keys.data(), order_.data(), n);
@@ -330,7 +338,8 @@ Grid::Grid(XyzRecords& records, double cell) : sorted_(records), in_place_(true)
 Grid::~Grid() {
     if (in_place_ && !identity_) {
         // Back to the original order: each record's original index is its sort key.
-        flag_sort<std::uint32_t>(sorted_.base, sorted_.stride, order_.data(), nullptr, order_.size());
+        flag_sort<std::uint32_t>(sorted_.base, sorted_.stride, order_.data(), nullptr,
+                                 order_.size());
     }
 }
 
@@ -367,13 +376,15 @@ struct Grid::RowCursor {
     const Grid& g;
     std::uint64_t row_key = ~std::uint64_t{0};
     bool started = false;
-    std::uint32_t row_at[3] = {};          // per dx: first row not below (x + dx, y - 1)
+    std::uint32_t row_at[3] = {};           // per dx: first row not below (x + dx, y - 1)
     std::uint32_t at[9] = {}, end[9] = {};  // per (dx, dy): cells of that row not yet passed
 
     /// The existing cells among c's 3x3x3 neighbourhood (c included), in neighbour_cells()'s
     /// order. Calls for one cursor must come in ascending c: rows are then found by moving
     /// forward, not by hashing.
-    void neighbours(std::uint32_t c, std::vector<std::uint32_t>& out, Neighbours which = Neighbours::kAll) {
+    void neighbours(std::uint32_t c,
+                    std::vector<std::uint32_t>& out,
+                    Neighbours which = Neighbours::kAll) {
         out.clear();
         const std::uint64_t key = g.cells_[c].key();
         std::int64_t xyz[3];
@@ -390,14 +401,16 @@ struct Grid::RowCursor {
         static constexpr int kAfterRows[5] = {4, 5, 6, 7, 8};
         const bool after = which == Neighbours::kAfter;
         for (const int j : after ? std::span<const int>(kAfterRows) : std::span<const int>(kRows)) {
-            while (at[j] < end[j] && static_cast<std::int64_t>(g.cells_[at[j]].key() & zmask) < xyz[2] - 1) {
+            while (at[j] < end[j] &&
+                   static_cast<std::int64_t>(g.cells_[at[j]].key() & zmask) < xyz[2] - 1) {
                 ++at[j];
             }
             std::uint32_t t = at[j];
             if (after && j == 4) {
                 t = c + 1;  // the own row's cells are consecutive: c + 1 is the next, if any
             }
-            for (; t < end[j] && static_cast<std::int64_t>(g.cells_[t].key() & zmask) <= xyz[2] + 1; ++t) {
+            for (; t < end[j] && static_cast<std::int64_t>(g.cells_[t].key() & zmask) <= xyz[2] + 1;
+                 ++t) {
                 out.push_back(t);
             }
         }
@@ -412,7 +425,8 @@ private:
             const bool valid_x = nx >= 0 && nx < g.dims_[0];
             std::uint32_t& r = row_at[dx + 1];
             if (valid_x) {
-                const std::uint64_t from = g.pack(nx, std::max<std::int64_t>(y - 1, 0), 0) >> g.bits_[2];
+                const std::uint64_t from =
+                    g.pack(nx, std::max<std::int64_t>(y - 1, 0), 0) >> g.bits_[2];
                 if (!started) {  // first row of the run: binary search
                     std::uint32_t lo = 0, hi = rows;
                     while (lo < hi) {
@@ -460,7 +474,8 @@ void Grid::renumber_by_position() {
 
 void Grid::order_cells_by_index() {
     if (!in_place_ || identity_) {
-        throw std::logic_error("Grid::order_cells_by_index: needs a grid that sorted records in place");
+        throw std::logic_error(
+            "Grid::order_cells_by_index: needs a grid that sorted records in place");
     }
     // Small cells (the usual ones) by insertion, records moved through a buffer; others by
     // the radix sort of the build (its set-up costs more than a few dozen moves).
@@ -470,13 +485,15 @@ void Grid::order_cells_by_index() {
     const auto cells = static_cast<std::int64_t>(cell_count());
 #pragma omp parallel for schedule(dynamic, 1024)
     for (std::int64_t c = 0; c < cells; ++c) {
-        const std::uint32_t b = cell_begin(static_cast<std::size_t>(c)), e = cell_end(static_cast<std::size_t>(c));
+        const std::uint32_t b = cell_begin(static_cast<std::size_t>(c)),
+                            e = cell_end(static_cast<std::size_t>(c));
         if (e - b < 2 || std::is_sorted(order_.begin() + b, order_.begin() + e)) {
             continue;
         }
         std::uint8_t* rec = sorted_.base;
         if (e - b > kInsertion || stride > kBuffer) {
-            flag_sort<std::uint32_t>(rec + std::size_t{b} * stride, stride, order_.data() + b, nullptr, e - b);
+            flag_sort<std::uint32_t>(rec + std::size_t{b} * stride, stride, order_.data() + b,
+                                     nullptr, e - b);
             continue;
         }
         std::array<std::uint8_t, kBuffer> held{};
@@ -490,7 +507,8 @@ void Grid::order_cells_by_index() {
             for (; j > b && order_[j - 1] > key; --j) {
                 order_[j] = order_[j - 1];
             }
-            std::memmove(rec + (std::size_t{j} + 1) * stride, rec + std::size_t{j} * stride, std::size_t{i - j} * stride);
+            std::memmove(rec + (std::size_t{j} + 1) * stride, rec + std::size_t{j} * stride,
+                         std::size_t{i - j} * stride);
             std::memcpy(rec + std::size_t{j} * stride, held.data(), stride);
             order_[j] = key;
         }
@@ -505,7 +523,9 @@ std::unique_ptr<Grid> grid_over(XyzRecords& records, double cell) {
     return std::make_unique<Grid>(records.view(), cell);
 }
 
-std::pair<const Grid::Cell*, const Grid::Cell*> Grid::row_span(std::int64_t x, std::int64_t y, std::int64_t z_lo,
+std::pair<const Grid::Cell*, const Grid::Cell*> Grid::row_span(std::int64_t x,
+                                                               std::int64_t y,
+                                                               std::int64_t z_lo,
                                                                std::int64_t z_hi) const {
     const auto [rb, re] = row(x, y);
     const std::uint64_t zmask = (std::uint64_t{1} << bits_[2]) - 1;
@@ -524,7 +544,8 @@ void Grid::neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const
 
 void Grid::sweep_cells(
     const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
-    const std::function<bool(std::uint32_t)>& needs_neighbours, Neighbours which) const {
+    const std::function<bool(std::uint32_t)>& needs_neighbours,
+    Neighbours which) const {
     // Runs of consecutive cells per task, so that the row cursors mostly move forward.
     constexpr std::int64_t kRun = 256;
     const auto cells = static_cast<std::int64_t>(cell_count());

@@ -24,12 +24,15 @@ void Grid::knn(std::uint32_t self,
                std::vector<std::uint32_t>& idx,
                std::vector<double>& d2) const {
     if (!has_points_) {
-        throw std::logic_error("grid: knn(i) needs a grid that copied the points and was not renumbered");
+        throw std::logic_error(
+            "grid: knn(i) needs a grid that copied the points and was not renumbered");
     }
     search(points_[self], self, k, idx, d2);
 }
 
-void Grid::knn_point(const pcl::PointXYZ& q, std::size_t k, std::vector<std::uint32_t>& idx,
+void Grid::knn_point(const pcl::PointXYZ& q,
+                     std::size_t k,
+                     std::vector<std::uint32_t>& idx,
                      std::vector<double>& d2) const {
     search(q, std::numeric_limits<std::uint32_t>::max(), k, idx, d2);
 }
@@ -125,19 +128,25 @@ struct KnnScratch {
 
 }  // namespace
 
-void Grid::all_knn(std::size_t k,
-                   const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
-                                            const std::vector<double>&)>& f) const {
+void Grid::all_knn(
+    std::size_t k,
+    const std::function<void(
+        std::uint32_t, const std::vector<std::uint32_t>&, const std::vector<double>&)>& f) const {
     const std::size_t others = finite_ == 0 ? 0 : finite_ - 1;
     // A point's cell is found with rounding, so a point may sit a hair across its cell's face:
     // face distances are reduced by `slack`, keeping every bound below the true distance.
     const double slack = 1e-6 * cell_;
     std::vector<std::uint32_t> far_points;  // left for the k-d tree
     std::mutex far_mutex;
-    const auto segment = [](std::uint32_t cell, const std::int64_t at[3], const std::int64_t centre[3]) {
-        Segment seg{cell, {static_cast<std::int8_t>(at[0] - centre[0]), static_cast<std::int8_t>(at[1] - centre[1]),
-                           static_cast<std::int8_t>(at[2] - centre[2])}, 0};
-        seg.rank = static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
+    const auto segment = [](std::uint32_t cell, const std::int64_t at[3],
+                            const std::int64_t centre[3]) {
+        Segment seg{cell,
+                    {static_cast<std::int8_t>(at[0] - centre[0]),
+                     static_cast<std::int8_t>(at[1] - centre[1]),
+                     static_cast<std::int8_t>(at[2] - centre[2])},
+                    0};
+        seg.rank =
+            static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
         return seg;
     };
     sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
@@ -178,13 +187,16 @@ void Grid::all_knn(std::size_t k,
             }
             const double px = point(s)[0], py = point(s)[1], pz = point(s)[2];
             const auto scan = [&](const std::vector<Segment>& cells) {
-                double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
+                double worst =
+                    w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
                 for (const Segment& seg : cells) {
-                    if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] > worst) {
+                    if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] >
+                        worst) {
                         continue;  // every point of that cell is farther than the k-th
                     }
                     const float* q = point(cells_[seg.cell].begin);
-                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end(); ++t, q += stride_) {
+                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end();
+                         ++t, q += stride_) {
                         const double ex = px - q[0], ey = py - q[1], ez = pz - q[2];
                         const double dd = ex * ex + ey * ey + ez * ez;
                         if (dd <= worst && t != s) {
@@ -209,12 +221,15 @@ void Grid::all_knn(std::size_t k,
                     for (std::int64_t dx = -2; dx <= 2; ++dx) {
                         for (std::int64_t dy = -2; dy <= 2; ++dy) {
                             const bool inner_row = std::abs(dx) <= 1 && std::abs(dy) <= 1;
-                            const auto [first, last] = row_span(xyz[0] + dx, xyz[1] + dy, xyz[2] - 2, xyz[2] + 2);
+                            const auto [first, last] =
+                                row_span(xyz[0] + dx, xyz[1] + dy, xyz[2] - 2, xyz[2] + 2);
                             for (const Cell* cell = first; cell < last; ++cell) {
                                 std::int64_t at[3];
                                 unpack(cell->key(), at);
-                                if (!inner_row || std::abs(at[2] - xyz[2]) == 2) {  // not in the block
-                                    w.ring2.push_back(segment(static_cast<std::uint32_t>(cell - cells_.data()), at, xyz));
+                                if (!inner_row ||
+                                    std::abs(at[2] - xyz[2]) == 2) {  // not in the block
+                                    w.ring2.push_back(segment(
+                                        static_cast<std::uint32_t>(cell - cells_.data()), at, xyz));
                                 }
                             }
                         }

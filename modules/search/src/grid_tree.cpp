@@ -35,7 +35,8 @@ void Grid::build_tree() const {
         // bound, held 48 bytes a cell: 6.9 MB at 1M points, part of it resident in huge pages.)
         nodes_.reserve(2 * (std::size_t{n} / (kLeafCells / 2) + 1));
         nodes_.push_back({0, n});
-        std::vector<std::uint32_t> mid;  // per node of a level: where its range splits (end = a leaf)
+        std::vector<std::uint32_t>
+            mid;  // per node of a level: where its range splits (end = a leaf)
         // Level by level: the nodes of one level own disjoint ranges of tree_perm_, so they are
         // split in parallel; children are appended afterwards, in order.
         for (std::size_t level_begin = 0; level_begin < nodes_.size();) {
@@ -51,7 +52,8 @@ void Grid::build_tree() const {
                 if (e - b <= kLeafCells) {
                     continue;
                 }
-                std::int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX}, hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
+                std::int32_t lo[3] = {INT32_MAX, INT32_MAX, INT32_MAX},
+                             hi[3] = {INT32_MIN, INT32_MIN, INT32_MIN};
                 for (std::uint32_t p = b; p < e; ++p) {
                     for (int a = 0; a < 3; ++a) {
                         lo[a] = std::min(lo[a], at_axis(tree_perm_[p], a));
@@ -67,14 +69,17 @@ void Grid::build_tree() const {
                 // Distinct cells differ on some axis, so the widest one has lo < hi.
                 auto* first = tree_perm_.data() + b;
                 auto* last = tree_perm_.data() + e;
-                std::nth_element(first, first + (e - b) / 2, last, [&](std::uint32_t u, std::uint32_t v) {
-                    return at_axis(u, axis) < at_axis(v, axis);
-                });
-                std::int32_t boundary = at_axis(first[(e - b) / 2], axis);  // left: coordinate < boundary
+                std::nth_element(first, first + (e - b) / 2, last,
+                                 [&](std::uint32_t u, std::uint32_t v) {
+                                     return at_axis(u, axis) < at_axis(v, axis);
+                                 });
+                std::int32_t boundary =
+                    at_axis(first[(e - b) / 2], axis);  // left: coordinate < boundary
                 if (boundary == lo[axis]) {
                     ++boundary;
                 }
-                auto* split = std::partition(first, last, [&](std::uint32_t u) { return at_axis(u, axis) < boundary; });
+                auto* split = std::partition(
+                    first, last, [&](std::uint32_t u) { return at_axis(u, axis) < boundary; });
                 split_at = static_cast<std::uint32_t>(split - tree_perm_.data());
                 node.axis = static_cast<std::uint8_t>(axis);
                 node.plane = origin_[axis] + static_cast<double>(boundary) * cell_;
@@ -94,8 +99,11 @@ void Grid::build_tree() const {
     });
 }
 
-void Grid::tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
-                    std::vector<std::uint32_t>& idx, std::vector<double>& d2) const {
+void Grid::tree_knn(const pcl::PointXYZ& q,
+                    std::uint32_t self,
+                    std::size_t k,
+                    std::vector<std::uint32_t>& idx,
+                    std::vector<double>& d2) const {
     build_tree();
     idx.clear();
     d2.clear();

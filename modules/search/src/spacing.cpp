@@ -1,11 +1,10 @@
-#include <pc/search/spacing.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 #include <pc/core/stats.h>
 #include <pc/search/grid.h>
+#include <pc/search/spacing.h>
 
 namespace pc::search {
 
@@ -24,7 +23,8 @@ double median_spacing(const Grid& grid, std::size_t samples) {
     if (grid.finite_count() < 2) {
         return 0;
     }
-    const std::size_t stride = std::max<std::size_t>(1, grid.finite_count() / std::max<std::size_t>(1, samples));
+    const std::size_t stride =
+        std::max<std::size_t>(1, grid.finite_count() / std::max<std::size_t>(1, samples));
     std::vector<double> d;
     std::vector<std::uint32_t> idx;
     std::vector<double> d2;

@@ -1,10 +1,9 @@
-#include <pc/segmentation/cluster_summary.h>
-
 #include <algorithm>
 #include <limits>
 #include <map>
 
 #include <pc/core/error.h>
+#include <pc/segmentation/cluster_summary.h>
 
 namespace pc::segmentation {
 

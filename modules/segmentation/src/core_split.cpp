@@ -1,5 +1,3 @@
-#include <pc/segmentation/core_split.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -13,15 +11,15 @@
 #include <string>
 #include <tuple>
 
-
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 
 #include <pc/core/error.h>
-#include <pc/core/stats.h>
 #include <pc/core/radix_sort.h>
+#include <pc/core/stats.h>
 #include <pc/search/grid.h>
 #include <pc/search/spacing.h>
+#include <pc/segmentation/core_split.h>
 #include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
@@ -54,7 +52,9 @@ struct LabelWords {
         std::memcpy(&v, base + k * stride + offset, sizeof v);
         return v;
     }
-    void set(std::size_t k, std::uint32_t v) const { std::memcpy(base + k * stride + offset, &v, sizeof v); }
+    void set(std::size_t k, std::uint32_t v) const {
+        std::memcpy(base + k * stride + offset, &v, sizeof v);
+    }
 };
 
 /// Parts the records: those `first(i)` holds for (`count` of them) go before the others, each
@@ -78,8 +78,11 @@ void part_records(XyzRecords& records, std::size_t count, First&& first, bool ba
 /// and the records are sorted where they are by those places (permute_records(): cache-aware,
 /// where walking the permutation's cycles waits on memory at every step), the places counted
 /// again before each sort, which consumes them; `index` goes last. No second array beside them.
-void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::vector<std::uint32_t>& part,
-                         std::vector<float>& depth, XyzRecords& records) {
+void back_to_point_order(std::vector<std::uint32_t>& index,
+                         std::size_t n,
+                         std::vector<std::uint32_t>& part,
+                         std::vector<float>& depth,
+                         XyzRecords& records) {
     const std::size_t m = index.size();
     std::vector<std::uint64_t> bits(n / 64 + 1, 0);
     for (const std::uint32_t i : index) {
@@ -109,8 +112,11 @@ void back_to_point_order(std::vector<std::uint32_t>& index, std::size_t n, std::
 /// patches that are spherical (RMS < 0.1 × radius) and curved (radius < 40 s). Also returns the
 /// points of a typical fruit: half of its sphere at the patches' median areal density. {0, 0} when
 /// fewer than 20 patches qualify.
-std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWords& lab,
-                                              const std::vector<std::vector<std::uint32_t>>& members, double s) {
+std::pair<double, double> radius_from_patches(
+    const XyzView& pts,
+    const LabelWords& lab,
+    const std::vector<std::vector<std::uint32_t>>& members,
+    double s) {
     std::vector<std::uint32_t> surface;  // positions in `pts`: a view of them, no copy
     for (const auto& m : members) {
         surface.insert(surface.end(), m.begin(), m.end());
@@ -138,7 +144,8 @@ std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWor
         const Sphere f = fit_sphere(view, patch);
         if (f.ok && f.rms < 0.1 * f.radius && f.radius < 40 * s) {
             radii.push_back(f.radius);
-            density.push_back(static_cast<double>(patch.size()) / (3.141592653589793 * reach * reach));
+            density.push_back(static_cast<double>(patch.size()) /
+                              (3.141592653589793 * reach * reach));
         }
     }
     if (radii.size() < 20) {
@@ -149,8 +156,12 @@ std::pair<double, double> radius_from_patches(const XyzView& pts, const LabelWor
 }
 
 /// Hollow clusters cut into spheres; see core_split().
-void split_hollow_clusters(const XyzView& pts, const LabelWords& lab, const std::vector<std::uint8_t>& hollow,
-                           const CoreSplitParams& params, CoreSplitResult& r, std::vector<std::uint32_t>& part,
+void split_hollow_clusters(const XyzView& pts,
+                           const LabelWords& lab,
+                           const std::vector<std::uint8_t>& hollow,
+                           const CoreSplitParams& params,
+                           CoreSplitResult& r,
+                           std::vector<std::uint32_t>& part,
                            std::vector<std::uint32_t>& parts) {
     const auto clusters = static_cast<std::uint32_t>(hollow.size());
     std::vector<std::vector<std::uint32_t>> members(clusters);
@@ -175,9 +186,11 @@ void split_hollow_clusters(const XyzView& pts, const LabelWords& lab, const std:
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
         const Sphere& f = fits[c];
-        const bool single = f.ok && f.rms < 0.15 * f.radius && f.radius <= params.spheres.radius_high * r.hollow_radius;
+        const bool single = f.ok && f.rms < 0.15 * f.radius &&
+                            f.radius <= params.spheres.radius_high * r.hollow_radius;
         if (!members[c].empty() && !single) {
-            cut[c] = split_hollow(pts, members[c], r.hollow_radius, r.spacing, typical, params.spheres);
+            cut[c] =
+                split_hollow(pts, members[c], r.hollow_radius, r.spacing, typical, params.spheres);
         }
     }
     for (std::uint32_t c = 0; c < clusters; ++c) {
@@ -199,8 +212,11 @@ void split_hollow_clusters(const XyzView& pts, const LabelWords& lab, const std:
 /// Parts whose points lie on one sphere of about the fruit radius are pieces of one fruit that
 /// occlusion cut apart: parts whose fitted spheres (RMS < 0.15 × radius, radius within
 /// 0.75..1.33 R) have centres closer than R / 2 are joined. `labels` are 1..count (0 = noise).
-void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labels, std::uint32_t count,
-                            double fruit_radius, std::uint32_t& merged) {
+void merge_hollow_fragments(const XyzView& pts,
+                            std::vector<std::uint32_t>& labels,
+                            std::uint32_t count,
+                            double fruit_radius,
+                            std::uint32_t& merged) {
     std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
     for (std::size_t k = 0; k < labels.size(); ++k) {
         members[labels[k]].push_back(static_cast<std::uint32_t>(k));
@@ -209,7 +225,8 @@ void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labe
 #pragma omp parallel for schedule(dynamic, 1)
     for (std::int64_t l = 1; l < static_cast<std::int64_t>(members.size()); ++l) {
         const Sphere f = fit_sphere(pts, members[l]);
-        if (f.ok && f.rms < 0.15 * f.radius && f.radius >= 0.75 * fruit_radius && f.radius <= 1.33 * fruit_radius) {
+        if (f.ok && f.rms < 0.15 * f.radius && f.radius >= 0.75 * fruit_radius &&
+            f.radius <= 1.33 * fruit_radius) {
             fits[l] = f;
         }
     }
@@ -219,7 +236,8 @@ void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labe
             order.push_back(l);
         }
     }
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return fits[a].centre[0] < fits[b].centre[0]; });
+    std::sort(order.begin(), order.end(),
+              [&](auto a, auto b) { return fits[a].centre[0] < fits[b].centre[0]; });
     std::vector<std::uint32_t> parent(members.size());
     std::iota(parent.begin(), parent.end(), 0u);
     const double reach = 0.5 * fruit_radius;
@@ -230,7 +248,8 @@ void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labe
             if (y[0] - x[0] > reach) {
                 break;
             }
-            const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+            const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                              (x[2] - y[2]) * (x[2] - y[2]);
             if (d2 < reach * reach) {
                 const auto ra = find(parent, order[a]), rb = find(parent, order[b]);
                 if (ra != rb) {
@@ -248,8 +267,12 @@ void merge_hollow_fragments(const XyzView& pts, std::vector<std::uint32_t>& labe
 /// Solid pieces of one fruit that poor masks cut apart: two parts (with some depth) are joined
 /// while every point of their union lies within `extent` of the union's centroid (they fit in
 /// one fruit), nearest centroids first. Whole touching fruit never fit: their union spans 2 R.
-void merge_solid_fragments(const XyzView& pts, const std::vector<float>& depth, std::vector<std::uint32_t>& labels,
-                           std::uint32_t count, double extent, std::uint32_t& merged) {
+void merge_solid_fragments(const XyzView& pts,
+                           const std::vector<float>& depth,
+                           std::vector<std::uint32_t>& labels,
+                           std::uint32_t count,
+                           double extent,
+                           std::uint32_t& merged) {
     std::vector<std::vector<std::uint32_t>> members(std::size_t{count} + 1);
     std::vector<std::uint8_t> solid(std::size_t{count} + 1, 0);
     for (std::size_t k = 0; k < labels.size(); ++k) {
@@ -267,8 +290,11 @@ void merge_solid_fragments(const XyzView& pts, const std::vector<float>& depth, 
             order.push_back(l);
         }
     }
-    const auto centroid = [&](std::uint32_t l) { return Eigen::Vector3d(sum[l] / static_cast<double>(members[l].size())); };
-    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return centroid(a).x() < centroid(b).x(); });
+    const auto centroid = [&](std::uint32_t l) {
+        return Eigen::Vector3d(sum[l] / static_cast<double>(members[l].size()));
+    };
+    std::sort(order.begin(), order.end(),
+              [&](auto a, auto b) { return centroid(a).x() < centroid(b).x(); });
     std::vector<std::tuple<double, std::uint32_t, std::uint32_t>> pairs;
     for (std::size_t a = 0; a < order.size(); ++a) {
         const Eigen::Vector3d ca = centroid(order[a]);
@@ -291,12 +317,14 @@ void merge_solid_fragments(const XyzView& pts, const std::vector<float>& depth, 
         if (a == b) {
             continue;
         }
-        const Eigen::Vector3d c = (sum[a] + sum[b]) / static_cast<double>(members[a].size() + members[b].size());
+        const Eigen::Vector3d c =
+            (sum[a] + sum[b]) / static_cast<double>(members[a].size() + members[b].size());
         bool fits = true;
         for (const auto* set : {&members[a], &members[b]}) {
             for (auto k : *set) {
                 const pcl::PointXYZ p = pts[k];
-                fits = fits && (Eigen::Vector3d(p.x, p.y, p.z) - c).squaredNorm() <= extent * extent;
+                fits =
+                    fits && (Eigen::Vector3d(p.x, p.y, p.z) - c).squaredNorm() <= extent * extent;
             }
         }
         if (fits) {
@@ -317,19 +345,20 @@ void merge_solid_fragments(const XyzView& pts, const std::vector<float>& depth, 
 
 void CoreSplitParams::validate() const {
     const auto in = [](double v, double lo, double hi) { return v >= lo && v <= hi; };
-    if (!in(core_fraction, 0.01, 0.99) || !in(boundary_radius, 1, 20) || !in(boundary_offset, 0.01, 0.99) ||
-        !in(link, 1, 10) || !in(min_core_fraction, 0, 1) || !in(min_relative_size, 0, 1) ||
-        !in(isotropy, 0, 1) || !in(fragment_extent, 0.1, 10)) {
-        throw InvalidArgument("core_split: core_fraction must be in [0.01, 0.99], boundary_radius in [1, 20], "
-                              "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction, min_relative_size "
-                              "and isotropy in [0, 1], fragment_extent in [0.1, 10]; got " +
-                              format_number(core_fraction) + ", " + format_number(boundary_radius) + ", " +
-                              format_number(boundary_offset) + ", " + format_number(link) + ", " +
-                              format_number(min_core_fraction) + ", " + format_number(min_relative_size) + ", " +
-                              format_number(isotropy) + ", " + format_number(fragment_extent));
+    if (!in(core_fraction, 0.01, 0.99) || !in(boundary_radius, 1, 20) ||
+        !in(boundary_offset, 0.01, 0.99) || !in(link, 1, 10) || !in(min_core_fraction, 0, 1) ||
+        !in(min_relative_size, 0, 1) || !in(isotropy, 0, 1) || !in(fragment_extent, 0.1, 10)) {
+        throw InvalidArgument(
+            "core_split: core_fraction must be in [0.01, 0.99], boundary_radius in [1, 20], "
+            "boundary_offset in [0.01, 0.99], link in [1, 10], min_core_fraction, "
+            "min_relative_size "
+            "and isotropy in [0, 1], fragment_extent in [0.1, 10]; got " +
+            format_number(core_fraction) + ", " + format_number(boundary_radius) + ", " +
+            format_number(boundary_offset) + ", " + format_number(link) + ", " +
+            format_number(min_core_fraction) + ", " + format_number(min_relative_size) + ", " +
+            format_number(isotropy) + ", " + format_number(fragment_extent));
     }
 }
-
 
 namespace {
 
@@ -351,7 +380,8 @@ Clustered number_clusters(const XyzView& cloud, const Labels& label) {
         clustered += label[i] != 0 && is_finite(cloud[i]);
     }
     if (clustered > kValue) {
-        throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " + std::to_string(clustered));
+        throw InvalidArgument("core_split: at most 2^30 - 1 clustered points, got " +
+                              std::to_string(clustered));
     }
     Clustered c;
     c.dense.assign(std::size_t{max_label} + 1, kNone);
@@ -371,8 +401,13 @@ Clustered number_clusters(const XyzView& cloud, const Labels& label) {
 /// The labels over the whole cloud from each clustered point's `local` label, and the depths
 /// (unless `with_depth` is false: `depth` is freed); parts smaller than the size limits become
 /// noise, the rest are numbered by size.
-CoreSplitResult finish(std::size_t n, const Clustered& c, std::vector<std::uint32_t>&& local, std::vector<float>&& depth,
-                       bool with_depth, const CoreSplitParams& params, CoreSplitResult&& r) {
+CoreSplitResult finish(std::size_t n,
+                       const Clustered& c,
+                       std::vector<std::uint32_t>&& local,
+                       std::vector<float>&& depth,
+                       bool with_depth,
+                       const CoreSplitParams& params,
+                       CoreSplitResult&& r) {
     if (with_depth) {
         r.depth.assign(n, 0.0f);
         for (std::size_t k = 0; k < depth.size(); ++k) {
@@ -400,7 +435,9 @@ CoreSplitResult finish(std::size_t n, const Clustered& c, std::vector<std::uint3
             }
         }
         if (!present.empty()) {
-            min_size = std::max(min_size, static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
+            min_size = std::max(
+                min_size,
+                static_cast<std::uint32_t>(std::ceil(params.min_relative_size * median(present))));
         }
     }
     r.cluster_count = renumber_by_size(out, min_size);
@@ -412,8 +449,12 @@ CoreSplitResult finish(std::size_t n, const Clustered& c, std::vector<std::uint3
 /// sorted in cell order while it works, back in point order when it returns), each holding its
 /// cluster (0..clusters-1) in the word at `label_offset`: each clustered point's label (1..,
 /// before the size limits), its depth (`depth`) and the rest of `r`.
-std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label_offset, std::size_t n,
-                                           Clustered& points, std::vector<float>& depth, const CoreSplitParams& params,
+std::vector<std::uint32_t> split_clustered(XyzRecords& recs,
+                                           std::uint32_t label_offset,
+                                           std::size_t n,
+                                           Clustered& points,
+                                           std::vector<float>& depth,
+                                           const CoreSplitParams& params,
                                            CoreSplitResult& r) {
     std::vector<std::uint32_t>& index = points.index;
     const LabelWords lab{recs.base, recs.stride, label_offset};
@@ -461,7 +502,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
                 for (std::uint32_t nc : nb) {
                     for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
                         const float* q = grid.point(t);
-                        const double ox = double{q[0]} - p[0], oy = double{q[1]} - p[1], oz = double{q[2]} - p[2];
+                        const double ox = double{q[0]} - p[0], oy = double{q[1]} - p[1],
+                                     oz = double{q[2]} - p[2];
                         if (ox * ox + oy * oy + oz * oz > rb2 || lab[t] != lab[k]) {
                             continue;
                         }
@@ -486,16 +528,21 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
                 Eigen::Matrix3d second;
                 second << xx, xy, xz, xy, yy, yz, xz, yz, zz;
                 const Eigen::Matrix3d cov = second * inv - mean * mean.transpose();
-                const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>().computeDirect(cov, Eigen::EigenvaluesOnly).eigenvalues();
-                // A solid's interior: neighbours all around (centred) and in every direction (isotropic).
-                boundary[k] = mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
+                const Eigen::Vector3d ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>()
+                                               .computeDirect(cov, Eigen::EigenvaluesOnly)
+                                               .eigenvalues();
+                // A solid's interior: neighbours all around (centred) and in every direction
+                // (isotropic).
+                boundary[k] =
+                    mean.norm() > params.boundary_offset * rb || ev[0] < params.isotropy * ev[2];
             }
         });
         // 2. Depth: distance to the nearest boundary point. The records are parted for it, the
         //    boundary points' first (each part in cell order): a grid sorts the boundary part in
         //    place (no copy of it), the interior part is looked up in order, and the records go
         //    back to cell order (where the search grid, kept for step 4, finds them).
-        const auto e = static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1}));
+        const auto e =
+            static_cast<std::size_t>(std::count(boundary.begin(), boundary.end(), std::uint8_t{1}));
         if (e > 0 && e < m) {
             const auto on_boundary = [&](std::uint32_t k) { return boundary[k] != 0; };
             part_records(recs, e, on_boundary, false);
@@ -511,7 +558,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
 #pragma omp for schedule(dynamic, 4096)
                     for (std::int64_t j = 0; j < static_cast<std::int64_t>(m - e); ++j) {
                         edges.knn_point(pts[e + static_cast<std::size_t>(j)], 1, idx, d2);
-                        depth[static_cast<std::size_t>(j)] = d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
+                        depth[static_cast<std::size_t>(j)] =
+                            d2.empty() ? 0.0f : static_cast<float>(std::sqrt(d2[0]));
                     }
                 }
             }
@@ -553,16 +601,22 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
         };
         std::vector<std::uint32_t> parent(m);
         std::iota(parent.begin(), parent.end(), 0u);
-        const auto is_core = [&](std::size_t k) { return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth; };
+        const auto is_core = [&](std::size_t k) {
+            return core_depth > 0 && !hollow[lab[k]] && depth[k] >= core_depth;
+        };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
                 // Each pair once (from its lower point): the sets, and their smallest members as
                 // roots, do not depend on the order of the unions.
-                const auto later_core = [&](std::uint32_t j) { return j > k && lab[j] == lab[k] && is_core(j); };
-                grid.for_each_within_if(point_at(k), link, later_core, [&](std::uint32_t j, double) {
-                    const auto a = find(parent, static_cast<std::uint32_t>(k)), b = find(parent, j);
-                    parent[std::max(a, b)] = std::min(a, b);
-                });
+                const auto later_core = [&](std::uint32_t j) {
+                    return j > k && lab[j] == lab[k] && is_core(j);
+                };
+                grid.for_each_within_if(
+                    point_at(k), link, later_core, [&](std::uint32_t j, double) {
+                        const auto a = find(parent, static_cast<std::uint32_t>(k)),
+                                   b = find(parent, j);
+                        parent[std::max(a, b)] = std::min(a, b);
+                    });
             }
         }
         // Every entry is pointed at its root (ascending: a root is its set's smallest member,
@@ -572,7 +626,9 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
         for (std::size_t k = 0; k < m; ++k) {
             parent[k] = parent[parent[k]];
         }
-        const auto root_of = [&](std::size_t k) { return (parent[k] & kRoot) != 0 ? static_cast<std::uint32_t>(k) : parent[k]; };
+        const auto root_of = [&](std::size_t k) {
+            return (parent[k] & kRoot) != 0 ? static_cast<std::uint32_t>(k) : parent[k];
+        };
         for (std::size_t k = 0; k < m; ++k) {
             if (is_core(k)) {
                 std::uint32_t& info = parent[root_of(k)];
@@ -580,7 +636,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
             }
         }
         const double ideal = 4.0 / 3.0 * 3.141592653589793 * std::pow(core_depth / s, 3);
-        const auto min_core = static_cast<std::uint32_t>(std::max(1.0, std::floor(params.min_core_fraction * ideal)));
+        const auto min_core =
+            static_cast<std::uint32_t>(std::max(1.0, std::floor(params.min_core_fraction * ideal)));
         // Within its cluster, a core's part number is its rank by its first point in point order
         // (the points are in cell order here): the kept cores are listed, their entries holding
         // their place in the list meanwhile.
@@ -612,7 +669,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
         //    Each point's part so far (kNone: none yet) is written over the forest, descending:
         //    a root's entry is read by its members, all above it, before it is replaced.
         const auto seeded = [&](std::size_t k) { return cores[lab[k]] >= 2 && is_core(k); };
-        std::vector<std::uint32_t> seed_start(std::size_t{clusters} + 1, 0);  // seeds per cluster, flat
+        std::vector<std::uint32_t> seed_start(std::size_t{clusters} + 1,
+                                              0);  // seeds per cluster, flat
         for (std::size_t k = m; k-- > 0;) {
             const std::uint32_t info = parent[root_of(k)];
             parent[k] = seeded(k) && (info & kNumbered) != 0 ? info & kValue : kNone;
@@ -631,14 +689,18 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
         }
 #pragma omp parallel for schedule(dynamic, 1)
         for (std::int64_t c = 0; c < static_cast<std::int64_t>(clusters); ++c) {
-            using Item = std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
+            using Item =
+                std::tuple<float, std::uint64_t, std::uint32_t>;  // depth, ~sequence, point
             std::priority_queue<Item> heap;
             std::uint64_t seq = 0;
-            // Seeded in point order (cloud indices rise with it): equal depths pop first-seeded first.
+            // Seeded in point order (cloud indices rise with it): equal depths pop first-seeded
+            // first.
             const auto first = seeds.begin() + seed_start[static_cast<std::size_t>(c)];
             const auto last = seeds.begin() + seed_start[static_cast<std::size_t>(c) + 1];
-            std::sort(first, last, [&](std::uint32_t a, std::uint32_t b) { return index[a] < index[b]; });
-            for (std::uint32_t q = seed_start[static_cast<std::size_t>(c)]; q < seed_start[static_cast<std::size_t>(c) + 1]; ++q) {
+            std::sort(first, last,
+                      [&](std::uint32_t a, std::uint32_t b) { return index[a] < index[b]; });
+            for (std::uint32_t q = seed_start[static_cast<std::size_t>(c)];
+                 q < seed_start[static_cast<std::size_t>(c) + 1]; ++q) {
                 const std::uint32_t k = seeds[q];
                 heap.emplace(depth[k], ~seq++, k);
             }
@@ -646,11 +708,14 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
                 const std::uint32_t k = std::get<2>(heap.top());
                 heap.pop();
                 // The cluster test first: other clusters' entries belong to other threads.
-                const auto unreached_yet = [&](std::uint32_t j) { return lab[j] == lab[k] && assigned[j] == kNone; };
-                grid.for_each_within_if(point_at(k), link, unreached_yet, [&](std::uint32_t j, double) {
-                    assigned[j] = assigned[k];
-                    heap.emplace(depth[j], ~seq++, j);
-                });
+                const auto unreached_yet = [&](std::uint32_t j) {
+                    return lab[j] == lab[k] && assigned[j] == kNone;
+                };
+                grid.for_each_within_if(point_at(k), link, unreached_yet,
+                                        [&](std::uint32_t j, double) {
+                                            assigned[j] = assigned[k];
+                                            heap.emplace(depth[j], ~seq++, j);
+                                        });
             }
         }
         // Points the flood could not reach (apart by more than `link`): the part of the nearest
@@ -667,7 +732,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
             for (auto& [k, to] : unreached) {
                 double best = std::numeric_limits<double>::infinity();
                 grid.for_each_within(point_at(k), step, [&](std::uint32_t j, double d2) {
-                    if (assigned[j] != kNone && lab[j] == lab[k] && (d2 < best || (d2 == best && assigned[j] < to))) {
+                    if (assigned[j] != kNone && lab[j] == lab[k] &&
+                        (d2 < best || (d2 == best && assigned[j] < to))) {
                         best = d2;
                         to = assigned[j];
                     }
@@ -713,7 +779,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
         merge_hollow_fragments(pts, local, first[clusters], r.hollow_radius, r.merged_fragments);
     }
     if (r.largest_depth > 0 && params.merge_fragments) {
-        merge_solid_fragments(pts, depth, local, first[clusters], params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
+        merge_solid_fragments(pts, depth, local, first[clusters],
+                              params.fragment_extent * (r.largest_depth + 1.5 * r.spacing),
                               r.merged_fragments);
     }
     return local;
@@ -721,12 +788,14 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs, std::uint32_t label
 
 }  // namespace
 
-CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t> labels, const CoreSplitParams& params) {
+CoreSplitResult core_split(const XyzView& cloud,
+                           std::vector<std::uint32_t> labels,
+                           const CoreSplitParams& params) {
     params.validate();
     const std::size_t n = cloud.size;
     if (labels.size() != n) {
-        throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) + "), got " +
-                              std::to_string(labels.size()));
+        throw InvalidArgument("core_split: labels must be one per point (" + std::to_string(n) +
+                              "), got " + std::to_string(labels.size()));
     }
     Clustered c = number_clusters(cloud, labels);
     // The clustered points as records of their coordinates and cluster, in point order: the
@@ -734,7 +803,8 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t> labe
     constexpr std::size_t kStride = 4 * sizeof(float);
     const std::size_t m = c.index.size();
     std::vector<float> copy(4 * m);
-    const LabelWords cluster{reinterpret_cast<std::uint8_t*>(copy.data()), kStride, 3 * sizeof(float)};
+    const LabelWords cluster{reinterpret_cast<std::uint8_t*>(copy.data()), kStride,
+                             3 * sizeof(float)};
     for (std::size_t k = 0; k < m; ++k) {
         const pcl::PointXYZ p = cloud[c.index[k]];
         copy[4 * k] = p.x;
@@ -747,7 +817,8 @@ CoreSplitResult core_split(const XyzView& cloud, std::vector<std::uint32_t> labe
     CoreSplitResult r;
     std::vector<float> depth;
     XyzRecords records(cluster.base, kStride, m, 0);
-    std::vector<std::uint32_t> local = split_clustered(records, cluster.offset, n, c, depth, params, r);
+    std::vector<std::uint32_t> local =
+        split_clustered(records, cluster.offset, n, c, depth, params, r);
     std::vector<float>().swap(copy);
     return finish(n, c, std::move(local), std::move(depth), true, params, std::move(r));
 }

@@ -1,5 +1,3 @@
-#include <pc/segmentation/dbscan.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -8,6 +6,7 @@
 
 #include <pc/core/error.h>
 #include <pc/search/grid.h>
+#include <pc/segmentation/dbscan.h>
 
 namespace pc::segmentation {
 
@@ -68,7 +67,10 @@ struct Near {
     }
     /// How many of the n points at q, q + stride, ... are within eps, stopping once `need` are
     /// found.
-    [[nodiscard]] std::uint32_t count(const float* q, std::size_t stride, std::uint32_t n, std::uint32_t need) const {
+    [[nodiscard]] std::uint32_t count(const float* q,
+                                      std::size_t stride,
+                                      std::uint32_t n,
+                                      std::uint32_t need) const {
         std::uint32_t found = 0;
         for (std::uint32_t i = 0; i < n && found < need; ++i, q += stride) {
             found += (*this)(q);
@@ -81,8 +83,13 @@ struct Near {
 /// cell's points, then written to the forest), numbers the local components 0..n-1 in `core`
 /// (a core point's entry becomes 1 + its component; see run()) and sets `count` to n (kMany
 /// when n > 64).
-void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e, double eps2,
-                      std::vector<std::uint8_t>& core, ConcurrentForest& forest, std::uint8_t& count) {
+void local_components(const search::Grid& grid,
+                      std::uint32_t b,
+                      std::uint32_t e,
+                      double eps2,
+                      std::vector<std::uint8_t>& core,
+                      ConcurrentForest& forest,
+                      std::uint8_t& count) {
     thread_local std::vector<std::uint32_t> up;
     up.resize(e - b);
     const auto root = [&](std::uint32_t x) {
@@ -93,7 +100,7 @@ void local_components(const search::Grid& grid, std::uint32_t b, std::uint32_t e
     };
     const float* xyz = grid.point(b);  // the cell's points, one stride apart
     const std::size_t stride = grid.point_stride();
-    std::uint32_t groups = 0;          // components among the core points seen so far
+    std::uint32_t groups = 0;  // components among the core points seen so far
     for (std::uint32_t s = 0; s < e - b; ++s) {
         up[s] = s;
         if (!core[b + s]) {
@@ -171,8 +178,9 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
             std::uint32_t found = near.count(grid.point(b), stride, e - b, need);
             for (std::size_t k = 0; k < nb.size() && found < need; ++k) {
                 if (nb[k] != c) {
-                    found += near.count(grid.point(grid.cell_begin(nb[k])), stride,
-                                        grid.cell_end(nb[k]) - grid.cell_begin(nb[k]), need - found);
+                    found +=
+                        near.count(grid.point(grid.cell_begin(nb[k])), stride,
+                                   grid.cell_end(nb[k]) - grid.cell_begin(nb[k]), need - found);
                 }
             }
             core[s] = found >= params.min_points;
@@ -185,86 +193,97 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     //    not looked at again. (Skipping cells and points by the core points' bounding boxes cost
     //    more than it saved, and 28 bytes a cell: measured on the 1M bench canopy, 83 -> 81 ms
     //    and 6 MB less without.)
-    grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
-        if (comps[c] == 0) {
-            return;
-        }
-        const auto first_core = [&](std::uint32_t cc) {
-            std::uint32_t s = grid.cell_begin(cc);
-            while (!core[s]) {
-                ++s;
+    grid.sweep_cells(
+        [&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+            if (comps[c] == 0) {
+                return;
             }
-            return s;
-        };
-        const std::uint32_t first_c = comps[c] == 1 ? first_core(c) : 0;
-        for (std::uint32_t nc : nb) {
-            if (nc <= c || comps[nc] == 0) {
-                continue;
-            }
-            if (comps[c] == 1 && comps[nc] == 1 && forest.find(first_c) == forest.find(first_core(nc))) {
-                continue;  // already joined through other cells
-            }
-            const bool track = comps[c] != kMany && comps[nc] != kMany && comps[c] * comps[nc] <= 64;
-            std::uint64_t joined = 0;  // bit comp_s * comps[nc] + comp_t
-            const std::uint64_t all =
-                track ? (comps[c] * comps[nc] == 64 ? ~std::uint64_t{0}
-                                                    : (std::uint64_t{1} << (comps[c] * comps[nc])) - 1)
-                      : 0;
-            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c) && (!track || joined != all); ++s) {
-                if (!core[s]) {
+            const auto first_core = [&](std::uint32_t cc) {
+                std::uint32_t s = grid.cell_begin(cc);
+                while (!core[s]) {
+                    ++s;
+                }
+                return s;
+            };
+            const std::uint32_t first_c = comps[c] == 1 ? first_core(c) : 0;
+            for (std::uint32_t nc : nb) {
+                if (nc <= c || comps[nc] == 0) {
                     continue;
                 }
-                const Near near(grid.point(s), eps2);
-                for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
-                    if (!core[t]) {
+                if (comps[c] == 1 && comps[nc] == 1 &&
+                    forest.find(first_c) == forest.find(first_core(nc))) {
+                    continue;  // already joined through other cells
+                }
+                const bool track =
+                    comps[c] != kMany && comps[nc] != kMany && comps[c] * comps[nc] <= 64;
+                std::uint64_t joined = 0;  // bit comp_s * comps[nc] + comp_t
+                const std::uint64_t all =
+                    track ? (comps[c] * comps[nc] == 64
+                                 ? ~std::uint64_t{0}
+                                 : (std::uint64_t{1} << (comps[c] * comps[nc])) - 1)
+                          : 0;
+                for (std::uint32_t s = grid.cell_begin(c);
+                     s < grid.cell_end(c) && (!track || joined != all); ++s) {
+                    if (!core[s]) {
                         continue;
                     }
-                    const std::uint64_t bit =
-                        track ? std::uint64_t{1} << ((core[s] - 1) * comps[nc] + (core[t] - 1)) : 0;
-                    if ((joined & bit) != 0 || !near(grid.point(t))) {
-                        continue;
+                    const Near near(grid.point(s), eps2);
+                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                        if (!core[t]) {
+                            continue;
+                        }
+                        const std::uint64_t bit =
+                            track ? std::uint64_t{1} << ((core[s] - 1) * comps[nc] + (core[t] - 1))
+                                  : 0;
+                        if ((joined & bit) != 0 || !near(grid.point(t))) {
+                            continue;
+                        }
+                        forest.unite(s, t);
+                        joined |= bit;
                     }
-                    forest.unite(s, t);
-                    joined |= bit;
                 }
             }
-        }
-    }, [&](std::uint32_t c) { return comps[c] != 0; }, search::Grid::Neighbours::kAfter);
+        },
+        [&](std::uint32_t c) { return comps[c] != 0; }, search::Grid::Neighbours::kAfter);
 
     // 3. Each point's forest entry is set to its cluster's root: core points by their component
     //    (the unions are done), border points by their nearest core point's (ties: the smallest
     //    original index); noise keeps itself. A border entry is read by no find(): nothing links
     //    to a non-core point.
     auto& parent = forest.parent;
-    grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
-        for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
-            if (core[s]) {
-                parent[s].store(forest.find(s), std::memory_order_relaxed);
-                continue;
-            }
-            double best = std::numeric_limits<double>::infinity();
-            std::uint32_t best_t = kNone;
-            for (std::uint32_t nc : nb) {
-                for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
-                    if (!core[t]) {
-                        continue;
-                    }
-                    const double d2 = grid.dist2(s, t);
-                    // d2 == best implies best is finite, so best_t is a real position.
-                    if (d2 <= eps2 && (d2 < best || (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
-                        best = d2;
-                        best_t = t;
+    grid.sweep_cells(
+        [&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
+            for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c); ++s) {
+                if (core[s]) {
+                    parent[s].store(forest.find(s), std::memory_order_relaxed);
+                    continue;
+                }
+                double best = std::numeric_limits<double>::infinity();
+                std::uint32_t best_t = kNone;
+                for (std::uint32_t nc : nb) {
+                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+                        if (!core[t]) {
+                            continue;
+                        }
+                        const double d2 = grid.dist2(s, t);
+                        // d2 == best implies best is finite, so best_t is a real position.
+                        if (d2 <= eps2 &&
+                            (d2 < best ||
+                             (d2 == best && grid.index_of(t) < grid.index_of(best_t)))) {
+                            best = d2;
+                            best_t = t;
+                        }
                     }
                 }
+                if (best_t != kNone) {
+                    parent[s].store(forest.find(best_t), std::memory_order_relaxed);
+                }
             }
-            if (best_t != kNone) {
-                parent[s].store(forest.find(best_t), std::memory_order_relaxed);
-            }
-        }
-    }, [&](std::uint32_t c) {  // only cells holding a border candidate
-        return std::find(core.begin() + grid.cell_begin(c), core.begin() + grid.cell_end(c), 0) !=
-               core.begin() + grid.cell_end(c);
-    });
+        },
+        [&](std::uint32_t c) {  // only cells holding a border candidate
+            return std::find(core.begin() + grid.cell_begin(c), core.begin() + grid.cell_end(c),
+                             0) != core.begin() + grid.cell_end(c);
+        });
 
     // 4. Number clusters by decreasing size, ties by smallest original member index. Each
     //    component first gets a compact id, written to its members' labels: the roots' first
@@ -280,7 +299,8 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     }
     for (std::uint32_t s = 0; s < m; ++s) {
         const std::uint32_t root = parent[s].load(std::memory_order_relaxed);
-        if (root != s) {  // a member of root's cluster (a point that is its own root is a root or noise)
+        if (root !=
+            s) {  // a member of root's cluster (a point that is its own root is a root or noise)
             r.labels[grid.index_of(s)] = r.labels[grid.index_of(root)];
         }
     }
@@ -336,7 +356,8 @@ double estimate_eps(const XyzView& cloud, std::uint32_t min_points) {
         std::vector<double> d2;
         std::vector<double> local;
 #pragma omp for schedule(static) nowait
-        for (std::int64_t i = 0; i < static_cast<std::int64_t>(n); i += static_cast<std::int64_t>(stride)) {
+        for (std::int64_t i = 0; i < static_cast<std::int64_t>(n);
+             i += static_cast<std::int64_t>(stride)) {
             grid.knn(static_cast<std::uint32_t>(i), min_points - 1, idx, d2);
             if (d2.size() == min_points - 1) {
                 local.push_back(std::sqrt(d2.back()));
@@ -349,7 +370,8 @@ double estimate_eps(const XyzView& cloud, std::uint32_t min_points) {
     if (kdist.size() < 3) {
         throw InvalidArgument("dbscan: eps auto needs more points");
     }
-    const std::size_t m = std::max<std::size_t>(3, static_cast<std::size_t>(0.995 * static_cast<double>(kdist.size())));
+    const std::size_t m = std::max<std::size_t>(
+        3, static_cast<std::size_t>(0.995 * static_cast<double>(kdist.size())));
     const double y0 = kdist.front(), y1 = kdist[m - 1];
     if (!(y1 > y0)) {
         return y1 > 0 ? y1 : 1.0;  // a perfectly regular cloud: its spacing

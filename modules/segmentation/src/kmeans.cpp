@@ -1,11 +1,10 @@
-#include <pc/segmentation/kmeans.h>
-
 #include <cmath>
 #include <limits>
 #include <random>
 #include <string>
 
 #include <pc/core/error.h>
+#include <pc/segmentation/kmeans.h>
 
 namespace pc::segmentation {
 
@@ -21,7 +20,8 @@ double dist2(const pcl::PointXYZ& p, const Centre& c) {
 /// Uniform double in [0, 1) from the engine's bits (portable, unlike std distributions).
 double unit(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-std::vector<Centre> seed_plus_plus(std::span<const pcl::PointXYZ> pts, std::uint32_t k,
+std::vector<Centre> seed_plus_plus(std::span<const pcl::PointXYZ> pts,
+                                   std::uint32_t k,
                                    std::mt19937_64& rng) {
     std::vector<Centre> c;
     const std::size_t n = pts.size();
@@ -50,7 +50,8 @@ std::vector<Centre> seed_plus_plus(std::span<const pcl::PointXYZ> pts, std::uint
     return c;
 }
 
-KMeansResult lloyd(std::span<const pcl::PointXYZ> pts, std::vector<Centre> centres,
+KMeansResult lloyd(std::span<const pcl::PointXYZ> pts,
+                   std::vector<Centre> centres,
                    std::uint32_t max_iterations) {
     const std::size_t n = pts.size();
     const std::size_t k = centres.size();
@@ -119,7 +120,8 @@ KMeansResult kmeans(std::span<const pcl::PointXYZ> points, const KMeansParams& p
     }
     std::mt19937_64 rng(params.seed);
     for (std::uint32_t r = 0; r < params.restarts; ++r) {
-        KMeansResult run = lloyd(points, seed_plus_plus(points, params.k, rng), params.max_iterations);
+        KMeansResult run =
+            lloyd(points, seed_plus_plus(points, params.k, rng), params.max_iterations);
         if (run.inertia < best.inertia) {
             best = std::move(run);
         }

@@ -1,5 +1,3 @@
-#include <pc/segmentation/sphere_split.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -7,6 +5,7 @@
 #include <Eigen/Dense>
 
 #include <pc/core/random.h>
+#include <pc/segmentation/sphere_split.h>
 
 namespace pc::segmentation {
 
@@ -85,7 +84,8 @@ std::vector<std::uint32_t> split_hollow(const XyzView& cloud,
     const double band = std::max(p.band * fruit_radius, 1.5 * spacing);
     const auto need = static_cast<std::size_t>(std::max(8.0, p.min_inliers * typical_points));
     const double lo = p.radius_low * fruit_radius, hi = p.radius_high * fruit_radius;
-    const double reach2 = (1.2 * fruit_radius) * (1.2 * fruit_radius);  // samples from one fruit, mostly
+    const double reach2 =
+        (1.2 * fruit_radius) * (1.2 * fruit_radius);  // samples from one fruit, mostly
     if (members.size() < 2 * need) {
         return part;
     }
@@ -184,7 +184,8 @@ std::vector<std::uint32_t> split_hollow(const XyzView& cloud,
         for (std::size_t b = 0; b < a; ++b) {
             const auto& x = spheres[a].centre;
             const auto& y = spheres[b].centre;
-            const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) + (x[2] - y[2]) * (x[2] - y[2]);
+            const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
+                              (x[2] - y[2]) * (x[2] - y[2]);
             if (d2 < fruit_radius * fruit_radius) {
                 group[a] = group[b];
                 break;

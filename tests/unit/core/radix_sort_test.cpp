@@ -77,8 +77,8 @@ TEST(RadixSort, FlagSortWithTagsOrdersByKeyLikeAStableSortUpToTies) {
         flag_sort(reinterpret_cast<std::uint8_t*>(words.data()), 8, keys.data(), tags.data(), n);
         EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
         for (std::size_t s = 0; s < n; ++s) {
-            ASSERT_EQ(words[2 * s], tags[s]);                   // the record moved with its tag
-            ASSERT_EQ(original[tags[s]], keys[s]);              // and with its key
+            ASSERT_EQ(words[2 * s], tags[s]);       // the record moved with its tag
+            ASSERT_EQ(original[tags[s]], keys[s]);  // and with its key
             ASSERT_EQ(words[2 * s + 1], static_cast<std::uint32_t>(keys[s]));
         }
     }
@@ -98,7 +98,8 @@ TEST(RadixSort, PairsAreSortedStably) {
     for (std::size_t i = 0; i < n; ++i) {
         want[i] = {keys[i], idx[i]};
     }
-    std::stable_sort(want.begin(), want.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::stable_sort(want.begin(), want.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
     const auto [sorted, order] = radix_sort_pairs(keys.data(), idx.data(), k2.data(), i2.data(), n);
     for (std::size_t i = 0; i < n; ++i) {
         ASSERT_EQ(sorted[i], want[i].first) << i;

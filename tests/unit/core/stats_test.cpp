@@ -59,7 +59,8 @@ TEST(Stats, SelectionWithoutACopyEqualsTheSortedValues) {
         std::vector<double> copy = finite;
         EXPECT_EQ(percentile_of_finite(v, q), percentile(copy, q)) << "q " << q;
     }
-    EXPECT_TRUE(std::isnan(percentile_of_finite(std::vector<double>{std::nan(""), -std::numeric_limits<double>::infinity()}, 50)));
+    EXPECT_TRUE(std::isnan(percentile_of_finite(
+        std::vector<double>{std::nan(""), -std::numeric_limits<double>::infinity()}, 50)));
 }
 
 }  // namespace

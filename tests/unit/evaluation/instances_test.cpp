@@ -72,11 +72,12 @@ TEST(Overlap, OneFruitSplitInTwoIsOneSplit) {
 TEST(Overlap, NoiseSmallClustersAndAbsentFruit) {
     const Ids gt = truth(3, 10);
     Ids pred = gt;
-    pred[25] = 0;  // noise is never a prediction
+    pred[25] = 0;   // noise is never a prediction
     pred[26] = 50;  // a one-point prediction
     InstanceParams p;
     p.min_points = 2;
-    const InstanceScores s = score_by_overlap(pred, gt, 5, p);  // 2 fruit never made it into the cloud
+    const InstanceScores s =
+        score_by_overlap(pred, gt, 5, p);  // 2 fruit never made it into the cloud
     EXPECT_EQ(s.count, 3u);
     EXPECT_EQ(s.gt_count, 5u);
     EXPECT_EQ(s.true_positives, 3u);
@@ -124,7 +125,8 @@ TEST(Centroid, MatchesWithinTheRadiusAndAttributesPointsToSpheres) {
         add(12.5f + d, 0, 0, 2);
     }
     add(30, 0, 0, 3);  // a far floater
-    const std::vector<TruthFruit> fruits = {{1, {0, 0, 0}, 1}, {2, {10, 0, 0}, 1}, {3, {12.5, 0, 0}, 1}};
+    const std::vector<TruthFruit> fruits = {
+        {1, {0, 0, 0}, 1}, {2, {10, 0, 0}, 1}, {3, {12.5, 0, 0}, 1}};
     const InstanceScores s = score_by_centroid(cloud, pred, fruits, 0, {});
     EXPECT_EQ(s.count, 3u);
     EXPECT_EQ(s.gt_count, 3u);
@@ -133,7 +135,8 @@ TEST(Centroid, MatchesWithinTheRadiusAndAttributesPointsToSpheres) {
     EXPECT_EQ(s.matches[0].fruit, 1u);
     EXPECT_EQ(s.merged, Ids{2});
     InstanceParams wide;
-    wide.radius_factor = 1.5;  // now 11.25 is within 1.5 of fruit 2 (and of fruit 3: tie, smaller id)
+    wide.radius_factor =
+        1.5;  // now 11.25 is within 1.5 of fruit 2 (and of fruit 3: tie, smaller id)
     const InstanceScores w = score_by_centroid(cloud, pred, fruits, 0, wide);
     EXPECT_EQ(w.true_positives, 2u);
     EXPECT_EQ(w.matches[1].fruit, 2u);

@@ -10,15 +10,15 @@ namespace {
 
 // Crafted colours: their hue, saturation, value and mean are known exactly.
 const std::vector<io::Rgb> kColours = {
-    {1, 0, 0},        // 0: red, hue 0, mean 1/3
-    {0, 1, 0},        // 1: green, hue 120
-    {0, 0, 1},        // 2: blue, hue 240
-    {1, 0, 1},        // 3: magenta, hue 300
+    {1, 0, 0},           // 0: red, hue 0, mean 1/3
+    {0, 1, 0},           // 1: green, hue 120
+    {0, 0, 1},           // 2: blue, hue 240
+    {1, 0, 1},           // 3: magenta, hue 300
     {0.5f, 0.5f, 0.5f},  // 4: grey, no hue, mean 0.5 exactly
-    {1, 1, 1},        // 5: white, mean 1
+    {1, 1, 1},           // 5: white, mean 1
     {0.1f, 0.1f, 0.1f},  // 6: dark
-    {1, 0.25f, 0},    // 7: orange, hue 15
-    {NAN, 1, 1},      // 8: broken colour
+    {1, 0.25f, 0},       // 7: orange, hue 15
+    {NAN, 1, 1},         // 8: broken colour
 };
 
 Indices run(const ColorFilterParams& p) { return color_filter(kColours, p).kept; }

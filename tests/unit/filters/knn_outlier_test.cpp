@@ -104,7 +104,8 @@ TEST(KnnOutlier, ZeroPercentDropsNothingFinite) {
 
 TEST(KnnOutlier, RejectsBadParameters) {
     EXPECT_THROW((void)knn_outlier(test::uniform(10, 1, 1), {.k = 0}), InvalidArgument);
-    EXPECT_THROW((void)knn_outlier(test::uniform(10, 1, 1), {.drop_percentile = 100}), InvalidArgument);
+    EXPECT_THROW((void)knn_outlier(test::uniform(10, 1, 1), {.drop_percentile = 100}),
+                 InvalidArgument);
 }
 
 }  // namespace

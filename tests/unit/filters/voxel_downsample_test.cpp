@@ -40,8 +40,9 @@ TEST(VoxelDownsample, IdsEqualABruteForceWhateverTheKeyWidth) {
     // together), and keys wider than 64 bits (far in every axis). Oracle: voxel index tuples
     // numbered in order of first occurrence.
     const double leaf = 1e-3;
-    for (const pcl::PointXYZ far : {pcl::PointXYZ(0.5f, 0.5f, 0.5f), pcl::PointXYZ(1e9f, 0.5f, 0.5f),
-                                    pcl::PointXYZ(1e9f, 1e9f, 1e9f)}) {
+    for (const pcl::PointXYZ far :
+         {pcl::PointXYZ(0.5f, 0.5f, 0.5f), pcl::PointXYZ(1e9f, 0.5f, 0.5f),
+          pcl::PointXYZ(1e9f, 1e9f, 1e9f)}) {
         Cloud c = test::uniform(300, 0.01f, 5);  // about 10 points a voxel row: repeats
         c.push_back(far);
         c.push_back(test::nan_point());
@@ -75,7 +76,8 @@ TEST(VoxelDownsample, IdsEqualABruteForceWhateverTheKeyWidth) {
 }
 
 TEST(VoxelDownsample, RejectsNonPositiveLeaf) {
-    EXPECT_THROW((void)voxel_downsample(test::grid({0, 0, 0}, 2, 1.0f), {.leaf = 0}), InvalidArgument);
+    EXPECT_THROW((void)voxel_downsample(test::grid({0, 0, 0}, 2, 1.0f), {.leaf = 0}),
+                 InvalidArgument);
 }
 
 }  // namespace

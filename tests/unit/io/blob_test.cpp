@@ -17,10 +17,9 @@ namespace {
 using F = pcl::PCLPointField;
 
 TEST(Blob, KeepPointsCompactsInPlaceKeepingEveryField) {
-    Blob b = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, 5, 1,
-                             [](std::size_t i, std::size_t k, std::uint32_t) {
-                                 return k == 0 ? i * 0.5 : i + 100.0;
-                             });
+    Blob b = test::make_blob(
+        {{"x", F::FLOAT32}, {"id", F::UINT16}}, 5, 1,
+        [](std::size_t i, std::size_t k, std::uint32_t) { return k == 0 ? i * 0.5 : i + 100.0; });
     const Blob original = b;
     const std::uint8_t* storage = b.cloud.data.data();
     const std::vector<std::uint32_t> idx = {1, 3, 4};
@@ -31,8 +30,9 @@ TEST(Blob, KeepPointsCompactsInPlaceKeepingEveryField) {
     EXPECT_EQ(b.cloud.row_step, 3u * b.cloud.point_step);
     EXPECT_EQ(b.cloud.fields.size(), 2u);
     for (std::size_t j = 0; j < idx.size(); ++j) {
-        EXPECT_EQ(0, std::memcmp(&b.cloud.data[j * b.cloud.point_step],
-                                 &original.cloud.data[idx[j] * b.cloud.point_step], b.cloud.point_step));
+        EXPECT_EQ(
+            0, std::memcmp(&b.cloud.data[j * b.cloud.point_step],
+                           &original.cloud.data[idx[j] * b.cloud.point_step], b.cloud.point_step));
     }
     keep_points(b, {});
     EXPECT_EQ(b.size(), 0u);
@@ -43,7 +43,9 @@ TEST(Blob, KeepFlaggedKeepsTheSameRowsAsTheIndicesOfItsFlags) {
     const std::vector<std::uint8_t> flags = {0, 2, 0, 1, 1, 0, 0};
     for (const bool keep_set : {true, false}) {
         Blob b = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, flags.size(), 1,
-                                 [](std::size_t i, std::size_t k, std::uint32_t) { return k == 0 ? i * 0.5 : i + 100.0; });
+                                 [](std::size_t i, std::size_t k, std::uint32_t) {
+                                     return k == 0 ? i * 0.5 : i + 100.0;
+                                 });
         Blob expected = b;
         std::vector<std::uint32_t> idx;
         for (std::uint32_t i = 0; i < flags.size(); ++i) {
@@ -81,8 +83,8 @@ TEST(Blob, SetFieldAppendsThenOverwritesInPlace) {
     EXPECT_EQ(b.cloud.point_step, old_step + 4);
     EXPECT_EQ(b.cloud.row_step, 4 * (old_step + 4));
     for (std::size_t i = 0; i < 4; ++i) {  // every point moved intact to its wider slot
-        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * (old_step + 4)], &original.cloud.data[i * old_step],
-                                 old_step));
+        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * (old_step + 4)],
+                                 &original.cloud.data[i * old_step], old_step));
     }
     const std::size_t fields = b.cloud.fields.size();
     set_field(b, "label", c);
@@ -91,7 +93,8 @@ TEST(Blob, SetFieldAppendsThenOverwritesInPlace) {
     const auto* f = find_field(b, "label");
     EXPECT_EQ(f->datatype, F::UINT32);
     for (std::size_t i = 0; i < 4; ++i) {
-        EXPECT_EQ(value_as_double(&b.cloud.data[i * b.cloud.point_step + f->offset], f->datatype), c[i]);
+        EXPECT_EQ(value_as_double(&b.cloud.data[i * b.cloud.point_step + f->offset], f->datatype),
+                  c[i]);
     }
     EXPECT_THROW(set_field(b, "label", std::span(a).first(3)), Error);
 }
@@ -104,8 +107,8 @@ TEST(Blob, SetFieldGrowsWithinTheRoomReservedByTheReaders) {
     set_field(b, "label", std::vector<std::uint32_t>(1000, 7));
     EXPECT_EQ(b.cloud.data.data(), storage);
     for (std::size_t i = 0; i < 1000; ++i) {
-        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * b.cloud.point_step], &exact[i * (b.cloud.point_step - 4)],
-                                 b.cloud.point_step - 4));
+        EXPECT_EQ(0, std::memcmp(&b.cloud.data[i * b.cloud.point_step],
+                                 &exact[i * (b.cloud.point_step - 4)], b.cloud.point_step - 4));
     }
 }
 
@@ -120,7 +123,8 @@ TEST(Blob, SetFieldReplacesFieldOfAnotherType) {
 }
 
 TEST(Blob, IsDenseFollowsEveryFloatField) {
-    Blob b = test::make_blob({{"x", F::FLOAT32}, {"i", F::FLOAT64}}, 3, 1, [](auto...) { return 1.0; });
+    Blob b =
+        test::make_blob({{"x", F::FLOAT32}, {"i", F::FLOAT64}}, 3, 1, [](auto...) { return 1.0; });
     update_is_dense(b);
     EXPECT_TRUE(b.cloud.is_dense);
     const double nan = std::nan("");
@@ -131,7 +135,8 @@ TEST(Blob, IsDenseFollowsEveryFloatField) {
 
 TEST(Blob, IsDenseSeesAnInfinityFarIntoTheCloud) {
     // Past the first block of points the check works on; -Inf in a float32 element.
-    Blob b = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}}, 9000, 1, [](auto...) { return 0.5; });
+    Blob b = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}}, 9000, 1,
+                             [](auto...) { return 0.5; });
     update_is_dense(b);
     EXPECT_TRUE(b.cloud.is_dense);
     const float inf = -std::numeric_limits<float>::infinity();

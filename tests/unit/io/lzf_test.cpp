@@ -19,8 +19,14 @@ std::vector<std::uint8_t> sample(std::size_t n, int alphabet, unsigned seed) {
 }
 
 TEST(Lzf, RoundTripsRandomAndRepetitiveData) {
-    for (const auto& [n, alphabet] : {std::pair{0, 2}, {1, 2}, {2, 256}, {3, 3}, {1000, 256},
-                                      {100000, 2}, {100000, 256}, {300000, 1}}) {
+    for (const auto& [n, alphabet] : {std::pair{0, 2},
+                                      {1, 2},
+                                      {2, 256},
+                                      {3, 3},
+                                      {1000, 256},
+                                      {100000, 2},
+                                      {100000, 256},
+                                      {300000, 1}}) {
         const auto in = sample(n, alphabet, 42);
         const auto packed = lzf_compress(in);
         std::vector<std::uint8_t> out(in.size());
@@ -59,12 +65,12 @@ TEST(Lzf, WeDecodePclStream) {
 TEST(Lzf, RejectsCorruptStreams) {
     std::vector<std::uint8_t> out(16);
     const std::vector<std::vector<std::uint8_t>> bad = {
-        {0x05, 1, 2},          // literal run of 6 with 2 bytes present
-        {0x00, 7, 0x20, 0x05}, // back-reference 6 bytes back after 1 byte of output
-        {0xe0},                // long match without its length byte
-        {0x20},                // match without its offset byte
+        {0x05, 1, 2},           // literal run of 6 with 2 bytes present
+        {0x00, 7, 0x20, 0x05},  // back-reference 6 bytes back after 1 byte of output
+        {0xe0},                 // long match without its length byte
+        {0x20},                 // match without its offset byte
         {0x0f, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 0x00, 1},  // 17 B > 16 B
-        {0x00, 1},             // decodes to 1 B, 16 B declared
+        {0x00, 1},  // decodes to 1 B, 16 B declared
     };
     for (const auto& stream : bad) {
         EXPECT_THROW(lzf_decompress(stream, out), IoError);

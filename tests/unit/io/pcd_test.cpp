@@ -1,14 +1,14 @@
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <csignal>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <string>
 #include <thread>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -27,9 +27,12 @@ using F = pcl::PCLPointField;
 /// Every datatype with COUNT 1 and 3, padding, non-finite floats, rgb with a NaN bit pattern,
 /// organised 3 x 2, a non-default viewpoint.
 Blob every_type_cloud() {
-    std::vector<test::FieldSpec> specs = {{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
-                                          {"rgb", F::FLOAT32}, {"_", F::UINT8, 3}};
-    const std::uint8_t types[] = {F::INT8,  F::UINT8,  F::INT16,   F::UINT16,  F::INT32,
+    std::vector<test::FieldSpec> specs = {{"x", F::FLOAT32},
+                                          {"y", F::FLOAT32},
+                                          {"z", F::FLOAT32},
+                                          {"rgb", F::FLOAT32},
+                                          {"_", F::UINT8, 3}};
+    const std::uint8_t types[] = {F::INT8,   F::UINT8, F::INT16,  F::UINT16,  F::INT32,
                                   F::UINT32, F::INT64, F::UINT64, F::FLOAT32, F::FLOAT64};
     for (std::uint8_t t : types) {
         specs.push_back({"t" + std::to_string(int{t}), t, 1});
@@ -40,10 +43,12 @@ Blob every_type_cloud() {
         return k < 3 ? base * 0.1 + 1e-7 * static_cast<double>(k) : base;
     });
     // A float with all mantissa bits, a subnormal, NaN and infinities.
-    const float specials[] = {0.1f, std::numeric_limits<float>::denorm_min(),
+    const float specials[] = {0.1f,
+                              std::numeric_limits<float>::denorm_min(),
                               std::numeric_limits<float>::quiet_NaN(),
                               std::numeric_limits<float>::infinity(),
-                              -std::numeric_limits<float>::infinity(), 3.4028235e38f};
+                              -std::numeric_limits<float>::infinity(),
+                              3.4028235e38f};
     for (std::size_t i = 0; i < 6; ++i) {
         std::memcpy(&b.cloud.data[i * b.cloud.point_step + 4], &specials[i], 4);
     }
@@ -111,8 +116,10 @@ TEST_P(PcdRoundTrip, LargeCloudRoundTrips) {
     EXPECT_EQ(round_trip(in, GetParam()).cloud.data, in.cloud.data);
 }
 
-INSTANTIATE_TEST_SUITE_P(Encodings, PcdRoundTrip,
-                         ::testing::Values(PcdEncoding::kAscii, PcdEncoding::kBinary,
+INSTANTIATE_TEST_SUITE_P(Encodings,
+                         PcdRoundTrip,
+                         ::testing::Values(PcdEncoding::kAscii,
+                                           PcdEncoding::kBinary,
                                            PcdEncoding::kBinaryCompressed),
                          [](const auto& p) {
                              return p.param == PcdEncoding::kAscii    ? std::string("Ascii")
@@ -180,7 +187,8 @@ TEST(Pcd, ABinaryCloudReadFromAPipeOrAFileEqualsTheParsedBytes) {
     const std::size_t header = whole.size() - b.cloud.data.size();
     std::string lying = whole.substr(0, header);
     for (const char* key : {"WIDTH 300000", "POINTS 300000"}) {
-        lying.replace(lying.find(key), std::string(key).size(), std::string(key).substr(0, 6) + "90000000");
+        lying.replace(lying.find(key), std::string(key).size(),
+                      std::string(key).substr(0, 6) + "90000000");
     }
     for (const std::string& bytes : {whole, whole + "xyz", whole.substr(0, whole.size() - 7), lying,
                                      whole.substr(0, header - 3)}) {
@@ -200,7 +208,8 @@ TEST(Pcd, ABinaryCloudReadFromAPipeOrAFileEqualsTheParsedBytes) {
                 EXPECT_EQ(got.size(), expected.blob.size());
                 EXPECT_EQ(got.cloud.fields.size(), expected.blob.cloud.fields.size());
             } else {  // the same problem, named after the input
-                EXPECT_NE(error.find(expected_error), std::string::npos) << error << " vs " << expected_error;
+                EXPECT_NE(error.find(expected_error), std::string::npos)
+                    << error << " vs " << expected_error;
             }
         }
     }
@@ -250,7 +259,8 @@ TEST(Pcd, AsciiReadsNanAndInfinity) {
 }
 
 TEST(Pcd, TrailingBytesAreANoteNotAnError) {
-    const ReadResult r = parse_pcd(test::xyz_header("1", "binary") + test::floats({1, 2, 3}) + "xx");
+    const ReadResult r =
+        parse_pcd(test::xyz_header("1", "binary") + test::floats({1, 2, 3}) + "xx");
     ASSERT_EQ(r.notes.size(), 1u);
     EXPECT_NE(r.notes[0].find("2 trailing bytes"), std::string::npos);
 }

@@ -43,7 +43,8 @@ std::string open3d_ply(bool big_endian = false) {
                     "property double y\nproperty double z\nproperty double nx\nproperty double ny\n"
                     "property double nz\nproperty uchar red\nproperty uchar green\n"
                     "property uchar blue\nend_header\n";
-    const double rows[2][6] = {{0.123456789012345, -1.5, 2e-9, 0, 0, 1}, {1e6 + 0.25, 3, -4, 1, 0, 0}};
+    const double rows[2][6] = {{0.123456789012345, -1.5, 2e-9, 0, 0, 1},
+                               {1e6 + 0.25, 3, -4, 1, 0, 0}};
     const std::uint8_t colours[2][3] = {{255, 128, 0}, {1, 2, 3}};
     for (int i = 0; i < 2; ++i) {
         for (double v : rows[i]) {
@@ -101,11 +102,13 @@ TEST(Ply, BinaryFacesAfterVerticesAreWalked) {
 }
 
 TEST(Ply, GaussianSplattingKeepsAllAttributesAndDerivesColour) {
-    std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
+    std::vector<std::string> names = {"x",  "y",      "z",      "nx",    "ny",
+                                      "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
     for (int k = 0; k < 45; ++k) {
         names.push_back("f_rest_" + std::to_string(k));
     }
-    for (const char* n : {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"}) {
+    for (const char* n :
+         {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"}) {
         names.push_back(n);
     }
     ASSERT_EQ(names.size(), 62u);
@@ -116,8 +119,10 @@ TEST(Ply, GaussianSplattingKeepsAllAttributesAndDerivesColour) {
     std::string s = test::ply_header("binary_little_endian", "1", props);
     const float c0 = 0.28209479177387814f;
     for (std::size_t k = 0; k < names.size(); ++k) {
-        const float v = names[k] == "f_dc_0" ? 0.5f / c0 : names[k] == "f_dc_1" ? -0.5f / c0
-                        : names[k] == "f_dc_2" ? 0.0f : static_cast<float>(k) * 0.25f;
+        const float v = names[k] == "f_dc_0"   ? 0.5f / c0
+                        : names[k] == "f_dc_1" ? -0.5f / c0
+                        : names[k] == "f_dc_2" ? 0.0f
+                                               : static_cast<float>(k) * 0.25f;
         put(s, v);
     }
     const Blob b = parse_ply(s).blob;
@@ -141,8 +146,9 @@ TEST(Ply, WriteThenReadKeepsFieldsAndColour) {
 }
 
 TEST(Ply, EmptyVertexElementIsAnEmptyCloud) {
-    EXPECT_EQ(parse_ply(test::ply_header("ascii", "0", "property float x\nproperty float y\n"
-                                                       "property float z\n"))
+    EXPECT_EQ(parse_ply(test::ply_header("ascii", "0",
+                                         "property float x\nproperty float y\n"
+                                         "property float z\n"))
                   .blob.size(),
               0u);
 }

@@ -19,11 +19,15 @@ using F = pcl::PCLPointField;
 
 /// x y z, an unknown field `quality` F 8 and packed rgb: points 0..n-1 along x, colour by parity.
 io::Blob line_cloud(std::size_t n) {
-    io::Blob b = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
-                                  {"quality", F::FLOAT64}, {"rgb", F::UINT32}},
-                                 n, 1, [](std::size_t i, std::size_t k, std::uint32_t) {
-                                     return k == 0 ? i * 0.01 : k == 3 ? i * 1.5 : k == 4 ? 0.0 : 0.0;
-                                 });
+    io::Blob b =
+        test::make_blob({{"x", F::FLOAT32},
+                         {"y", F::FLOAT32},
+                         {"z", F::FLOAT32},
+                         {"quality", F::FLOAT64},
+                         {"rgb", F::UINT32}},
+                        n, 1, [](std::size_t i, std::size_t k, std::uint32_t) {
+                            return k == 0 ? i * 0.01 : k == 3 ? i * 1.5 : k == 4 ? 0.0 : 0.0;
+                        });
     for (std::size_t i = 0; i < n; ++i) {
         test::set_bits(b, i, 4, i % 2 ? 0xFFFFFFu : 0x101010u);
     }
@@ -36,8 +40,9 @@ TEST(Steps, FiltersKeepUnknownFieldsBitForBit) {
     ASSERT_EQ(s.blob.size(), 5u);
     EXPECT_EQ(s.blob.cloud.fields.size(), in.cloud.fields.size());
     for (std::size_t j = 0; j < 5; ++j) {  // kept points are 1, 3, 5, 7, 9
-        EXPECT_EQ(0, std::memcmp(&s.blob.cloud.data[j * in.cloud.point_step],
-                                 &in.cloud.data[(2 * j + 1) * in.cloud.point_step], in.cloud.point_step));
+        EXPECT_EQ(
+            0, std::memcmp(&s.blob.cloud.data[j * in.cloud.point_step],
+                           &in.cloud.data[(2 * j + 1) * in.cloud.point_step], in.cloud.point_step));
     }
 }
 
@@ -66,15 +71,20 @@ std::pair<io::Blob, io::Blob> thin_and_rich_blobs(std::size_t n) {
         if (i % 500 == 0 || i % 7 == 3) {  // a new centre, or a scattered point
             p[i] = {centre(rng), centre(rng), centre(rng)};
         } else {
-            p[i] = {p[i - 1][0] + off(rng) * 0.1, p[i - 1][1] + off(rng) * 0.1, p[i - 1][2] + off(rng) * 0.1};
+            p[i] = {p[i - 1][0] + off(rng) * 0.1, p[i - 1][1] + off(rng) * 0.1,
+                    p[i - 1][2] + off(rng) * 0.1};
         }
     }
     const auto xyz = [&](std::size_t i, std::size_t k, std::uint32_t) {
         return i % 997 == 5 ? std::nan("") : k < 3 ? p[i][k] : static_cast<double>(i);
     };
-    io::Blob thin = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}}, n, 1, xyz);
-    io::Blob rich = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
-                                     {"quality", F::FLOAT64}, {"id", F::UINT32}},
+    io::Blob thin =
+        test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}}, n, 1, xyz);
+    io::Blob rich = test::make_blob({{"x", F::FLOAT32},
+                                     {"y", F::FLOAT32},
+                                     {"z", F::FLOAT32},
+                                     {"quality", F::FLOAT64},
+                                     {"id", F::UINT32}},
                                     n, 1, xyz);
     return {thin, rich};
 }
@@ -85,7 +95,8 @@ TEST(Steps, ThinPointsSortedInPlaceGiveTheSameResultsInTheSameOrder) {
     const auto [thin, rich] = thin_and_rich_blobs(30000);
     const auto same_points = [&](const io::Blob& out) {
         for (std::size_t i = 0; i < thin.size(); ++i) {
-            ASSERT_EQ(0, std::memcmp(&out.cloud.data[i * out.cloud.point_step], &thin.cloud.data[i * 12], 12))
+            ASSERT_EQ(0, std::memcmp(&out.cloud.data[i * out.cloud.point_step],
+                                     &thin.cloud.data[i * 12], 12))
                 << "point " << i;
         }
     };
@@ -118,7 +129,8 @@ TEST(Steps, ThinLabelledPointsAreSplitAndSpacedInPlaceWithTheSameResults) {
                 for (int j = -5; j <= 5; ++j) {
                     for (int k = -5; k <= 5; ++k) {
                         if (i * i + j * j + k * k <= 25) {
-                            p.push_back({c[0] + 0.01 * i + 0.005, c[1] + 0.01 * j + 0.005, c[2] + 0.01 * k + 0.005});
+                            p.push_back({c[0] + 0.01 * i + 0.005, c[1] + 0.01 * j + 0.005,
+                                         c[2] + 0.01 * k + 0.005});
                         }
                     }
                 }
@@ -126,22 +138,30 @@ TEST(Steps, ThinLabelledPointsAreSplitAndSpacedInPlaceWithTheSameResults) {
             p.push_back({anywhere(rng), anywhere(rng), anywhere(rng)});
         }
     }
-    const auto xyz = [&](std::size_t i, std::size_t k, std::uint32_t) { return k < 3 ? p[i][k] : static_cast<double>(i); };
-    const io::Blob thin = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}}, p.size(), 1, xyz);
-    const io::Blob rich = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32},
-                                           {"quality", F::FLOAT64}, {"id", F::UINT32}},
+    const auto xyz = [&](std::size_t i, std::size_t k, std::uint32_t) {
+        return k < 3 ? p[i][k] : static_cast<double>(i);
+    };
+    const io::Blob thin = test::make_blob({{"x", F::FLOAT32}, {"y", F::FLOAT32}, {"z", F::FLOAT32}},
+                                          p.size(), 1, xyz);
+    const io::Blob rich = test::make_blob({{"x", F::FLOAT32},
+                                           {"y", F::FLOAT32},
+                                           {"z", F::FLOAT32},
+                                           {"quality", F::FLOAT64},
+                                           {"id", F::UINT32}},
                                           p.size(), 1, xyz);
     const EpsRule spacing{.mode = EpsRule::Mode::kSpacing, .factor = 1.5};
     const Step d_thin = apply_dbscan(thin, {.min_points = 3}, spacing);
     const Step d_rich = apply_dbscan(rich, {.min_points = 3}, spacing);
     EXPECT_EQ(io::labels(d_thin.blob), io::labels(d_rich.blob));
     EXPECT_EQ(d_thin.note, d_rich.note);
-    const segmentation::RecursiveSplitParams cores{.rule = segmentation::SplitRule::kCores, .min_cluster_size = 1};
+    const segmentation::RecursiveSplitParams cores{.rule = segmentation::SplitRule::kCores,
+                                                   .min_cluster_size = 1};
     const Step s_thin = apply_recursive_split(d_thin.blob, cores);
     const Step s_rich = apply_recursive_split(d_rich.blob, cores);
     ASSERT_EQ(s_thin.blob.cloud.point_step, 16u);
     for (std::size_t i = 0; i < thin.size(); ++i) {
-        ASSERT_EQ(0, std::memcmp(&s_thin.blob.cloud.data[i * 16], &thin.cloud.data[i * 12], 12)) << "point " << i;
+        ASSERT_EQ(0, std::memcmp(&s_thin.blob.cloud.data[i * 16], &thin.cloud.data[i * 12], 12))
+            << "point " << i;
     }
     const auto labels = io::labels(s_thin.blob);
     EXPECT_EQ(labels, io::labels(s_rich.blob));

@@ -11,7 +11,8 @@ namespace pc::scenes {
 namespace {
 
 double dist(const Vec3& a, const Vec3& b) {
-    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    return std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                     (a[2] - b[2]) * (a[2] - b[2]));
 }
 
 SceneParams small(std::uint64_t seed = 7) {
@@ -47,7 +48,8 @@ TEST(Scene, SpeciesHaveThePapersCountsAndFruitNeverOverlap) {
             for (std::size_t j = i + 1; j < s.fruits.size(); ++j) {
                 const auto &a = s.fruits[i], &b = s.fruits[j];
                 const double gap = dist(a.centre, b.centre) - a.radius - b.radius;
-                EXPECT_GE(gap, a.bunch == b.bunch ? -1e-12 : p.separation - 1e-12) << name << ' ' << i << ' ' << j;
+                EXPECT_GE(gap, a.bunch == b.bunch ? -1e-12 : p.separation - 1e-12)
+                    << name << ' ' << i << ' ' << j;
             }
         }
         // Every fruit of a bunch touches another of its bunch (gap within touch_gap).
@@ -126,10 +128,15 @@ Scene enclosed() {
 
 TEST(Render, ImplicitModeLosesTheInteriorOfEnclosedFruit) {
     const Scene s = enclosed();
-    const RenderParams rp{.mode = Mode::kImplicit, .voxel = 0.004, .surface_noise = 0, .floaters = 0,
-                          .background = 0, .outliers = 0};
+    const RenderParams rp{.mode = Mode::kImplicit,
+                          .voxel = 0.004,
+                          .surface_noise = 0,
+                          .floaters = 0,
+                          .background = 0,
+                          .outliers = 0};
     const Rendered imp = render(s, rp);
-    const Rendered exp = render(s, {.mode = Mode::kExplicit, .voxel = 0.004, .background = 0, .outliers = 0});
+    const Rendered exp =
+        render(s, {.mode = Mode::kExplicit, .voxel = 0.004, .background = 0, .outliers = 0});
     const auto enclosed_points = imp.fruit_points.front(), lone_points = imp.fruit_points.back();
     EXPECT_GT(lone_points, 200u);
     EXPECT_LT(enclosed_points, lone_points / 4) << enclosed_points << " vs " << lone_points;
@@ -193,7 +200,8 @@ TEST(Scene, BadParametersAreRefused) {
     EXPECT_THROW((void)make_scene(p), InvalidArgument);
     EXPECT_THROW((void)species("banana"), InvalidArgument);
     EXPECT_THROW((void)parse_mode("solid"), InvalidArgument);
-    EXPECT_THROW((void)render(make_scene(small()), {.voxel = 0.05}), InvalidArgument);  // voxel > radius
+    EXPECT_THROW((void)render(make_scene(small()), {.voxel = 0.05}),
+                 InvalidArgument);  // voxel > radius
     EXPECT_THROW((void)render(make_scene(small()), {.recall = 0}), InvalidArgument);
 }
 

@@ -4,8 +4,8 @@
 #include <cstring>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <numeric>
 #include <random>
 #include <stdexcept>
@@ -22,7 +22,9 @@ namespace pc::search {
 namespace {
 
 /// Brute-force k nearest others of point i, ordered by (d², index).
-std::vector<std::pair<double, std::uint32_t>> brute_knn(const Cloud& c, std::uint32_t i, std::size_t k) {
+std::vector<std::pair<double, std::uint32_t>> brute_knn(const Cloud& c,
+                                                        std::uint32_t i,
+                                                        std::size_t k) {
     std::vector<std::pair<double, std::uint32_t>> all;
     for (std::uint32_t j = 0; j < c.size(); ++j) {
         if (j != i && is_finite(c[j])) {
@@ -36,7 +38,10 @@ std::vector<std::pair<double, std::uint32_t>> brute_knn(const Cloud& c, std::uin
 
 /// grid.knn(i) for every `stride`-th point equals the brute force over `c` (the grid's points,
 /// in its numbering).
-void expect_grid_knn_is_brute_force(const Grid& grid, const Cloud& c, std::size_t k, std::uint32_t stride = 1) {
+void expect_grid_knn_is_brute_force(const Grid& grid,
+                                    const Cloud& c,
+                                    std::size_t k,
+                                    std::uint32_t stride = 1) {
     std::vector<std::uint32_t> idx;
     std::vector<double> d2;
     for (std::uint32_t i = 0; i < c.size(); i += stride) {
@@ -159,7 +164,8 @@ TEST(Grid, NeighbourCellsAreTheBlockAroundACellNearestRowsFirst) {
         std::vector<std::uint32_t> expected;
         for (std::size_t o = 0; o < grid.cell_count(); ++o) {
             const auto there = at(o);
-            if (std::abs(there[0] - here[0]) <= 1 && std::abs(there[1] - here[1]) <= 1 && std::abs(there[2] - here[2]) <= 1) {
+            if (std::abs(there[0] - here[0]) <= 1 && std::abs(there[1] - here[1]) <= 1 &&
+                std::abs(there[2] - here[2]) <= 1) {
                 expected.push_back(static_cast<std::uint32_t>(o));
             }
         }
@@ -169,7 +175,8 @@ TEST(Grid, NeighbourCellsAreTheBlockAroundACellNearestRowsFirst) {
         int last = 0;  // 0: own row, 1: a row sharing a face, 2: a diagonal row
         for (auto o : nb) {
             const auto there = at(o);
-            const int kind = static_cast<int>(std::abs(there[0] - here[0]) + std::abs(there[1] - here[1]));
+            const int kind =
+                static_cast<int>(std::abs(there[0] - here[0]) + std::abs(there[1] - here[1]));
             EXPECT_GE(kind, last) << "cell " << cc;
             last = kind;
         }
@@ -227,7 +234,11 @@ TEST(Grid, RadiusQueryMatchesBruteForceIncludingExactDistances) {
             // The filtered form: the points the predicate accepts, each asked about once.
             std::vector<std::uint32_t> odd, asked;
             grid.for_each_within_if(
-                c[i], r, [&](std::uint32_t j) { asked.push_back(j); return j % 2 == 1; },
+                c[i], r,
+                [&](std::uint32_t j) {
+                    asked.push_back(j);
+                    return j % 2 == 1;
+                },
                 [&](std::uint32_t j, double d2) {
                     EXPECT_EQ(d2, test::dist2(c[i], c[j]));
                     odd.push_back(j);
@@ -254,7 +265,8 @@ TEST(Grid, RadiusQueryMatchesBruteForceIncludingExactDistances) {
 /// Dense blobs, a lattice, a sparse scatter and far floaters: every path of all_knn (the 3x3x3
 /// block, the next ring, the k-d tree for isolated points) is taken.
 Cloud mixed_density_cloud() {
-    Cloud c = test::concat(test::ball({0, 0, 0}, 0.05f, 1500, 7), test::grid({0.2f, 0, 0}, 6, 0.02f));
+    Cloud c =
+        test::concat(test::ball({0, 0, 0}, 0.05f, 1500, 7), test::grid({0.2f, 0, 0}, 6, 0.02f));
     c = test::concat(c, test::uniform(200, 1.0f, 8));
     c.push_back({5, 5, 5});
     c.push_back({-3, 2, 0});
@@ -306,7 +318,10 @@ std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride, std::ui
 /// Checks an in-place grid over `c` (as records of `stride` bytes, x at `offset`) against the
 /// copying grid: the records are whole and in cell order, the answers are the same, and
 /// the destructor gives back the original bytes.
-void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t stride, std::uint32_t offset) {
+void expect_in_place_grid_equals_copy(const Cloud& c,
+                                      double cell,
+                                      std::size_t stride,
+                                      std::uint32_t offset) {
     SCOPED_TRACE("stride " + std::to_string(stride) + ", cell " + std::to_string(cell));
     std::vector<std::uint8_t> bytes = records_of(c, stride, offset);
     const std::vector<std::uint8_t> original = bytes;
@@ -320,7 +335,8 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
     for (std::uint32_t s = 0; s < grid.finite_count(); ++s) {
         // Each sorted record is a whole original one, its coordinates where point() says.
         const std::uint32_t i = grid.index_of(s);
-        ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[i * stride], stride)) << "position " << s;
+        ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[i * stride], stride))
+            << "position " << s;
         EXPECT_EQ(grid.point(s), reinterpret_cast<const float*>(&bytes[s * stride + offset]));
     }
     for (std::size_t k = 0; k < grid.cell_count(); ++k) {
@@ -345,8 +361,10 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
         EXPECT_EQ(d2_a, d2_b) << "query " << i;
     }
     std::vector<std::vector<std::uint32_t>> all_a(c.size()), all_b(c.size());
-    grid.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx, const std::vector<double>&) { all_a[i] = idx; });
-    copy.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx, const std::vector<double>&) { all_b[i] = idx; });
+    grid.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx,
+                        const std::vector<double>&) { all_a[i] = idx; });
+    copy.all_knn(4, [&](std::uint32_t i, const std::vector<std::uint32_t>& idx,
+                        const std::vector<double>&) { all_b[i] = idx; });
     EXPECT_EQ(all_a, all_b);
     EXPECT_THROW(grid.knn(0, 3, idx_a, d2_a), std::logic_error);  // the records have moved
     grid_ptr.reset();
@@ -357,7 +375,9 @@ void expect_in_place_grid_equals_copy(const Cloud& c, double cell, std::size_t s
         ordered.order_cells_by_index();
         for (std::uint32_t s = 0; s < ordered.finite_count(); ++s) {
             ASSERT_EQ(ordered.index_of(s), copy.index_of(s)) << "position " << s;
-            ASSERT_EQ(0, std::memcmp(&bytes[s * stride], &original[copy.index_of(s) * stride], stride)) << "position " << s;
+            ASSERT_EQ(0,
+                      std::memcmp(&bytes[s * stride], &original[copy.index_of(s) * stride], stride))
+                << "position " << s;
         }
         EXPECT_EQ(median_spacing(ordered), median_spacing(copy));
     }
@@ -371,7 +391,8 @@ TEST(Grid, InPlaceSortsWholeRecordsAnswersAsTheCopyAndPutsThemBack) {
     Cloud c = mixed_density_cloud();
     c.push_back(test::nan_point());
     c.push_back(c[3]);  // a duplicate
-    for (const auto& [stride, offset] : {std::pair<std::size_t, std::uint32_t>{12, 0}, {20, 8}, {44, 16}, {264, 100}}) {
+    for (const auto& [stride, offset] :
+         {std::pair<std::size_t, std::uint32_t>{12, 0}, {20, 8}, {44, 16}, {264, 100}}) {
         for (double cell : {0.005, 0.02}) {
             expect_in_place_grid_equals_copy(c, cell, stride, offset);
         }
@@ -405,7 +426,8 @@ TEST(Grid, MedianSpacingIsTheMedianNearestOtherDistanceOfStridedSamples) {
         double best = std::numeric_limits<double>::infinity();
         for (std::size_t j = 0; j < c.size(); ++j) {
             if (j != grid.index_of(static_cast<std::uint32_t>(s))) {
-                const double ex = double{c[j].x} - p.x, ey = double{c[j].y} - p.y, ez = double{c[j].z} - p.z;
+                const double ex = double{c[j].x} - p.x, ey = double{c[j].y} - p.y,
+                             ez = double{c[j].z} - p.z;
                 best = std::min(best, ex * ex + ey * ey + ez * ez);
             }
         }
@@ -512,8 +534,10 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
         EXPECT_EQ(grid.index_of(s), s);
         EXPECT_EQ(rebuilt.index_of(s), s);  // the sort is stable: cell order is kept
         std::vector<std::pair<std::uint32_t, double>> got, want;
-        grid.for_each_within(sorted[s], cell, [&](std::uint32_t j, double d) { got.emplace_back(old[j], d); });
-        before.for_each_within(sorted[s], cell, [&](std::uint32_t j, double d) { want.emplace_back(j, d); });
+        grid.for_each_within(sorted[s], cell,
+                             [&](std::uint32_t j, double d) { got.emplace_back(old[j], d); });
+        before.for_each_within(sorted[s], cell,
+                               [&](std::uint32_t j, double d) { want.emplace_back(j, d); });
         EXPECT_EQ(got, want) << "position " << s;
         grid.knn_point(sorted[s], 4, idx, d2);
         rebuilt.knn_point(sorted[s], 4, ref_idx, ref_d2);
@@ -536,8 +560,10 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
         EXPECT_EQ(in_place.index_of(s), s);
         EXPECT_EQ(records.view()[s].x, sorted[s].x);
         std::vector<std::uint32_t> got, want;
-        in_place.for_each_within(sorted[s], cell, [&](std::uint32_t j, double) { got.push_back(j); });
-        rebuilt.for_each_within(sorted[s], cell, [&](std::uint32_t j, double) { want.push_back(j); });
+        in_place.for_each_within(sorted[s], cell,
+                                 [&](std::uint32_t j, double) { got.push_back(j); });
+        rebuilt.for_each_within(sorted[s], cell,
+                                [&](std::uint32_t j, double) { want.push_back(j); });
         EXPECT_EQ(got, want) << "position " << s;
     }
     in_place_ptr.reset();
@@ -553,7 +579,8 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
 TEST(Grid, RebuiltOverACloudInItsCellOrderItKeepsEveryPointInPlace) {
     // A copying grid's sort is stable, also on two threads (clouds of 2^16 points and more) and
     // with 64-bit keys: rebuilt over points already in its cell order, it keeps them in place.
-    for (const auto& [points, cell] : std::vector<std::pair<std::uint32_t, double>>{{3000, 0.08}, {120000, 0.02}, {120000, 2e-6}}) {
+    for (const auto& [points, cell] : std::vector<std::pair<std::uint32_t, double>>{
+             {3000, 0.08}, {120000, 0.02}, {120000, 2e-6}}) {
         const Cloud c = test::uniform(points, 1.0f, 23);
         const Grid first(c, cell);
         Cloud sorted;

@@ -8,7 +8,6 @@
 #include <tuple>
 
 #include <Eigen/Geometry>
-
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
@@ -20,15 +19,22 @@ namespace pc::segmentation {
 namespace {
 
 /// Lattice points (spacing 1) inside a ball: what an explicit voxel reconstruction exports.
-void add_solid(Cloud& c, std::vector<std::uint32_t>& truth, std::vector<std::uint32_t>& label,
-               const Eigen::Vector3d& centre, double r, std::uint32_t id, std::uint32_t cluster) {
+void add_solid(Cloud& c,
+               std::vector<std::uint32_t>& truth,
+               std::vector<std::uint32_t>& label,
+               const Eigen::Vector3d& centre,
+               double r,
+               std::uint32_t id,
+               std::uint32_t cluster) {
     for (int i = -8; i <= 8; ++i) {
         for (int j = -8; j <= 8; ++j) {
             for (int k = -8; k <= 8; ++k) {
-                const Eigen::Vector3d p(std::floor(centre.x()) + i + 0.5, std::floor(centre.y()) + j + 0.5,
+                const Eigen::Vector3d p(std::floor(centre.x()) + i + 0.5,
+                                        std::floor(centre.y()) + j + 0.5,
                                         std::floor(centre.z()) + k + 0.5);
                 if ((p - centre).norm() <= r) {
-                    c.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+                    c.push_back({static_cast<float>(p.x()), static_cast<float>(p.y()),
+                                 static_cast<float>(p.z())});
                     truth.push_back(id);
                     label.push_back(cluster);
                 }
@@ -89,7 +95,8 @@ Scene bunch() {
     add_solid(s.cloud, s.truth, s.label, {0, 0, 0}, r, 1, 1);
     add_solid(s.cloud, s.truth, s.label, {30, 0, 0}, r, 2, 2);
     add_solid(s.cloud, s.truth, s.label, {0, 30, 0}, r, 3, 3);
-    const std::array<Eigen::Vector3d, 4> at = {Eigen::Vector3d{30, 30, 0}, {39.1, 30, 0}, {34.6, 37.9, 0}, {34.6, 33, 7.6}};
+    const std::array<Eigen::Vector3d, 4> at = {
+        Eigen::Vector3d{30, 30, 0}, {39.1, 30, 0}, {34.6, 37.9, 0}, {34.6, 33, 7.6}};
     for (std::uint32_t f = 0; f < 4; ++f) {
         add_solid(s.cloud, s.truth, s.label, at[f], r, 4 + f, 4);
     }
@@ -159,13 +166,17 @@ TEST(CoreSplit, ASubsetViewGivesWhatACopyOfItsPointsGives) {
 TEST(CoreSplit, SamePartitionWhenScaledOrRotated) {
     const Scene s = bunch();
     const CoreSplitResult base = core_split(s.cloud, s.label, {});
-    const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    const Eigen::Matrix3d rot =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
     for (const auto& [name, m] : std::vector<std::pair<std::string, Eigen::Matrix3d>>{
-             {"x0.25", 0.25 * Eigen::Matrix3d::Identity()}, {"x4", 4.0 * Eigen::Matrix3d::Identity()}, {"rotated", rot}}) {
+             {"x0.25", 0.25 * Eigen::Matrix3d::Identity()},
+             {"x4", 4.0 * Eigen::Matrix3d::Identity()},
+             {"rotated", rot}}) {
         Cloud t;
         for (const auto& p : s.cloud) {
             const Eigen::Vector3d q = m * Eigen::Vector3d(p.x, p.y, p.z);
-            t.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())});
+            t.push_back(
+                {static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z())});
         }
         const CoreSplitResult r = core_split(t, s.label, {});
         EXPECT_EQ(r.cluster_count, base.cluster_count) << name;
@@ -176,10 +187,12 @@ TEST(CoreSplit, SamePartitionWhenScaledOrRotated) {
 }
 
 TEST(CoreSplit, HollowShellsAreCutIntoSpheres) {
-    // Surface points only (a NeRF-like export): three lone shells and a touching pair in one cluster.
+    // Surface points only (a NeRF-like export): three lone shells and a touching pair in one
+    // cluster.
     Cloud c;
     std::vector<std::uint32_t> truth, label;
-    const auto shell = [&](float x, float y, std::uint32_t id, std::uint32_t cluster, unsigned seed) {
+    const auto shell = [&](float x, float y, std::uint32_t id, std::uint32_t cluster,
+                           unsigned seed) {
         for (const auto& p : test::sphere_shell(1.0f, 600, seed)) {
             c.push_back({p.x + x, p.y + y, p.z});
             truth.push_back(id);

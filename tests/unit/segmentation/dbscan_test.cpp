@@ -2,8 +2,8 @@
 #include <cstring>
 #include <map>
 #include <memory>
-#include <stdexcept>
 #include <numeric>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -85,7 +85,8 @@ void expect_same_partition(const DbscanResult& r, const std::vector<std::int64_t
 
 TEST(Dbscan, MatchesBruteForceOnRandomClouds) {
     const Cloud c = test::uniform(1500, 1.0f, 21);
-    for (const auto& [eps, min_points] : {std::pair{0.05, 3u}, {0.08, 10u}, {0.03, 1u}, {0.2, 40u}}) {
+    for (const auto& [eps, min_points] :
+         {std::pair{0.05, 3u}, {0.08, 10u}, {0.03, 1u}, {0.2, 40u}}) {
         const DbscanResult r = dbscan(c, {.eps = eps, .min_points = min_points});
         expect_same_partition(r, brute_dbscan(c, eps, min_points));
     }
@@ -94,13 +95,15 @@ TEST(Dbscan, MatchesBruteForceOnRandomClouds) {
 TEST(Dbscan, MatchesBruteForceOnDenseBlobsNearEachOther) {
     // Many points per cell (cell-local components, cell pairs joined once) and blobs that
     // touch, nearly touch or are bridged by a thin chain.
-    Cloud c = test::concat(test::ball({0, 0, 0}, 0.05f, 900, 31), test::ball({0.11f, 0, 0}, 0.05f, 900, 32));
+    Cloud c = test::concat(test::ball({0, 0, 0}, 0.05f, 900, 31),
+                           test::ball({0.11f, 0, 0}, 0.05f, 900, 32));
     c = test::concat(c, test::ball({0.3f, 0, 0}, 0.03f, 600, 33));
     for (int i = 0; i < 12; ++i) {
         c.push_back({0.16f + 0.01f * static_cast<float>(i), 0.002f, 0.0f});
     }
     c = test::concat(c, test::uniform(300, 0.5f, 34));
-    for (const auto& [eps, min_points] : {std::pair{0.01, 5u}, {0.02, 12u}, {0.006, 3u}, {0.05, 60u}}) {
+    for (const auto& [eps, min_points] :
+         {std::pair{0.01, 5u}, {0.02, 12u}, {0.006, 3u}, {0.05, 60u}}) {
         const DbscanResult r = dbscan(c, {.eps = eps, .min_points = min_points});
         expect_same_partition(r, brute_dbscan(c, eps, min_points));
     }
@@ -110,7 +113,8 @@ TEST(Dbscan, ThinAndRichRecordsGiveTheSameResultAndAreLeftInPlace) {
     // 12-byte records are sorted in place, 20-byte ones copied (search::grid_over): the same
     // clusters either way, with NaN points, and the records come back byte for byte.
     const DbscanParams p{.eps = 0.05, .min_points = 4};
-    Cloud c = test::concat(test::uniform(800, 1.0f, 41), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 42));
+    Cloud c =
+        test::concat(test::uniform(800, 1.0f, 41), test::ball({0.5f, 0.5f, 0.5f}, 0.1f, 400, 42));
     c.push_back(test::nan_point());
     const DbscanResult want = dbscan(c, p);
     expect_same_partition(want, brute_dbscan(c, p.eps, p.min_points));
@@ -183,7 +187,8 @@ TEST(Dbscan, LabelsAreInvariantUnderTranslation) {
 }
 
 TEST(Dbscan, EstimatedEpsSeparatesTwoBalls) {
-    const Cloud c = test::concat(test::ball({0, 0, 0}, 1, 3000, 1), test::ball({3, 0, 0}, 1, 3000, 2));
+    const Cloud c =
+        test::concat(test::ball({0, 0, 0}, 1, 3000, 1), test::ball({3, 0, 0}, 1, 3000, 2));
     const double eps = estimate_eps(c, 5);
     EXPECT_GT(eps, 0.0);
     EXPECT_LT(eps, 1.0);

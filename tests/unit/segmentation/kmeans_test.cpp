@@ -9,7 +9,8 @@ namespace pc::segmentation {
 namespace {
 
 TEST(KMeans, TwoSeparatedBallsAreTheTwoClusters) {
-    const Cloud c = test::concat(test::ball({0, 0, 0}, 1, 200, 1), test::ball({5, 0, 0}, 1, 300, 2));
+    const Cloud c =
+        test::concat(test::ball({0, 0, 0}, 1, 200, 1), test::ball({5, 0, 0}, 1, 300, 2));
     const KMeansResult r = kmeans(c.points, {.k = 2, .seed = 7});
     for (std::size_t i = 1; i < 200; ++i) {
         EXPECT_EQ(r.assignment[i], r.assignment[0]);

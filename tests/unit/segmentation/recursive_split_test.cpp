@@ -27,7 +27,8 @@ Scene singles_and_a_touching_pair(int singles) {
         ++s.fruit;
     }
     // Two balls touching at one point: one DBSCAN cluster, two fruit.
-    const Cloud pair = test::concat(test::ball({0, 10, 0}, 1, 300, 7), test::ball({2, 10, 0}, 1, 300, 8));
+    const Cloud pair =
+        test::concat(test::ball({0, 10, 0}, 1, 300, 7), test::ball({2, 10, 0}, 1, 300, 8));
     s.cloud += pair;
     s.labels.insert(s.labels.end(), pair.size(), static_cast<std::uint32_t>(singles + 1));
     s.fruit += 2;
@@ -61,7 +62,8 @@ TEST(RecursiveSplit, OneBallStaysOne) {
 TEST(RecursiveSplit, SparseFactorFiveKeepsThePair) {
     const Scene s = singles_and_a_touching_pair(6);
     // The pair's AABB is about 2x a single ball's: above 2x median, not above 5x.
-    EXPECT_EQ(recursive_split(s.cloud, s.labels, {.volume_factor = 5.0}).cluster_count, s.fruit - 1);
+    EXPECT_EQ(recursive_split(s.cloud, s.labels, {.volume_factor = 5.0}).cluster_count,
+              s.fruit - 1);
 }
 
 TEST(RecursiveSplit, MinClusterSizeTurnsSmallClustersToNoise) {

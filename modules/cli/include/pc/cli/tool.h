@@ -1,8 +1,8 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -55,7 +55,8 @@ private:
 /// A real number for option `--option`; throws pc::InvalidArgument naming it.
 [[nodiscard]] double parse_double(const std::string& option, const std::string& text);
 /// "x,y,z" for option `--option`; throws pc::InvalidArgument naming it.
-[[nodiscard]] std::array<double, 3> parse_triple(const std::string& option, const std::string& text);
+[[nodiscard]] std::array<double, 3> parse_triple(const std::string& option,
+                                                 const std::string& text);
 /// Writes a cloud to `path` (binary PCD, or binary PLY for a .ply name) through a temporary file
 /// renamed into place, so a failure never leaves a partial file.
 void write_cloud_file(const std::string& path, const io::Blob& blob);
@@ -96,7 +97,9 @@ public:
                  std::function<void(const std::string&)> apply);
     /// Positional input paths (`pc_extent a.ply b.pcd`). An explicit -i is the first input; when
     /// fewer than `min_count` paths are given, stdin ("-") comes first (`pc_compare B < A`).
-    void inputs(std::vector<std::string>* paths, const std::string& help, std::size_t min_count = 1);
+    void inputs(std::vector<std::string>* paths,
+                const std::string& help,
+                std::size_t min_count = 1);
     /// The tool makes its cloud instead of reading one (pc_synth): no -i, no --max-input-bytes.
     void no_input();
     /// Extra text printed at the end of --help.

@@ -79,7 +79,10 @@ struct XyzRecords {
     std::uint32_t offset = 0;  ///< byte offset of x (y at + 4, z at + 8)
 
     XyzRecords() = default;
-    XyzRecords(std::uint8_t* at, std::size_t record_bytes, std::size_t count, std::uint32_t x_offset)
+    XyzRecords(std::uint8_t* at,
+               std::size_t record_bytes,
+               std::size_t count,
+               std::uint32_t x_offset)
         : base(at), stride(record_bytes), size(count), offset(x_offset) {}
     /// The points of a pcl cloud (16-byte records, x at 0).
     explicit XyzRecords(Cloud& cloud)

@@ -5,7 +5,8 @@
 
 namespace pc {
 
-/// Base of every error the library throws. Messages follow `<unit>: <what> must <rule>, got <value>`.
+/// Base of every error the library throws. Messages follow `<unit>: <what> must <rule>, got
+/// <value>`.
 class Error : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;

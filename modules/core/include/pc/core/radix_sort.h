@@ -24,7 +24,8 @@ namespace pc {
 /// input; its elements go after the first half's within every digit): stable, so the result is
 /// the serial sort's.
 template <class Key>
-std::pair<Key*, std::uint32_t*> radix_sort_pairs(Key* keys, std::uint32_t* idx, Key* k2, std::uint32_t* i2, std::size_t n) {
+std::pair<Key*, std::uint32_t*> radix_sort_pairs(
+    Key* keys, std::uint32_t* idx, Key* k2, std::uint32_t* i2, std::size_t n) {
     Key all_or = 0, all_and = static_cast<Key>(~Key{0});
     for (std::size_t i = 0; i < n; ++i) {
         all_or |= keys[i];
@@ -90,7 +91,8 @@ namespace detail {
 /// permutation by its cycles instead took 0.4 s for 4M points here (20 ms for 1M, which fit in
 /// the cache). Buckets of the first level are sorted on two threads.
 template <class Key, std::size_t kWords, bool kTagged>
-void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_t* tags, std::size_t n) {
+void flag_sort_impl(
+    std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_t* tags, std::size_t n) {
     const std::size_t words = kWords != 0 ? kWords : step / sizeof(Word);
     const auto swap_words = [&](Word* a, Word* b) {
         for (std::size_t w = 0; w < words; ++w) {
@@ -100,7 +102,8 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
         }
     };
     const auto swap = [&](std::size_t i, std::size_t j) {
-        swap_words(reinterpret_cast<Word*>(rec + i * step), reinterpret_cast<Word*>(rec + j * step));
+        swap_words(reinterpret_cast<Word*>(rec + i * step),
+                   reinterpret_cast<Word*>(rec + j * step));
         std::swap(keys[i], keys[j]);
         if constexpr (kTagged) {
             std::swap(tags[i], tags[j]);
@@ -186,7 +189,8 @@ void flag_sort_impl(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_
     const auto digit = [](Key k, int shift) {
         return static_cast<unsigned>((shift >= 0 ? k >> shift : k << -shift) & 0xff);
     };
-    const auto sort = [&](auto& self, std::size_t lo, std::size_t hi, int shift, bool parallel) -> void {
+    const auto sort = [&](auto& self, std::size_t lo, std::size_t hi, int shift,
+                          bool parallel) -> void {
         if (hi - lo <= kLeaf && step <= 256) {
             leaf(lo, hi);
             return;
@@ -264,14 +268,23 @@ void flag_sort(std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_t* ta
         }
     };
     switch (step) {
-        case 12: run.template operator()<3>(); break;
-        case 16: run.template operator()<4>(); break;
-        case 20: run.template operator()<5>(); break;
-        case 32: run.template operator()<8>(); break;
-        default: run.template operator()<0>(); break;
+        case 12:
+            run.template operator()<3>();
+            break;
+        case 16:
+            run.template operator()<4>();
+            break;
+        case 20:
+            run.template operator()<5>();
+            break;
+        case 32:
+            run.template operator()<8>();
+            break;
+        default:
+            run.template operator()<0>();
+            break;
     }
 }
-
 
 /// Moves record i of the to.size() records of `stride` bytes (a multiple of 4) at `base` to place
 /// to[i] in place (`to`: a permutation of 0..size-1; it is left sorted): e.g. the elements of an
@@ -280,7 +293,8 @@ inline void permute_records(void* base, std::size_t stride, std::span<std::uint3
     if (stride == 0 || stride % sizeof(std::uint32_t) != 0) {
         throw std::logic_error("permute_records: records of whole 4-byte words");
     }
-    flag_sort<std::uint32_t>(static_cast<std::uint8_t*>(base), stride, to.data(), nullptr, to.size());
+    flag_sort<std::uint32_t>(static_cast<std::uint8_t*>(base), stride, to.data(), nullptr,
+                             to.size());
 }
 
 /// The same for the records of a cloud (std::logic_error unless `to` has one place a record).

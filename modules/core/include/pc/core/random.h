@@ -13,7 +13,8 @@ class Rng {
 public:
     explicit Rng(std::uint64_t seed) : state_(seed) {}
     /// The same seed mixed with a stream number: independent sequences for independent parts.
-    Rng(std::uint64_t seed, std::uint64_t stream) : state_(seed ^ (stream * 0xD1B54A32D192ED03ull)) {
+    Rng(std::uint64_t seed, std::uint64_t stream)
+        : state_(seed ^ (stream * 0xD1B54A32D192ED03ull)) {
         (void)next();
     }
 

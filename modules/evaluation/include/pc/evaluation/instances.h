@@ -11,10 +11,11 @@ namespace pc::evaluation {
 
 /// Parameters of the instance evaluation (docs/tools/pc_eval.md).
 struct InstanceParams {
-    double min_iou = 0.5;     ///< overlap matching: a pair matches when IoU > this (>= 0.5 keeps it one-to-one)
-    double share = 0.5;       ///< merge: a prediction holds > share of each of >= 2 fruit;
-                              ///< split: >= 2 predictions each made of > share of one fruit
-    double radius_factor = 1.0;  ///< centroid matching: centroid within this × the fruit radius
+    double min_iou =
+        0.5;  ///< overlap matching: a pair matches when IoU > this (>= 0.5 keeps it one-to-one)
+    double share = 0.5;            ///< merge: a prediction holds > share of each of >= 2 fruit;
+                                   ///< split: >= 2 predictions each made of > share of one fruit
+    double radius_factor = 1.0;    ///< centroid matching: centroid within this × the fruit radius
     std::uint32_t min_points = 1;  ///< predictions with fewer points are treated as noise
 
     void validate() const;
@@ -30,14 +31,14 @@ struct TruthFruit {
 /// A matched pair: predicted label and ground-truth id, with the overlap (points) or the distance.
 struct Match {
     std::uint32_t label = 0, fruit = 0;
-    double overlap = 0;   ///< points shared (overlap mode) or centroid distance (centroid mode)
-    double iou = 0;       ///< overlap mode only
+    double overlap = 0;  ///< points shared (overlap mode) or centroid distance (centroid mode)
+    double iou = 0;      ///< overlap mode only
 };
 
 struct InstanceScores {
-    std::size_t count = 0;          ///< predicted instances (labels != 0 with >= min_points points)
-    std::size_t gt_count = 0;       ///< ground-truth fruit
-    std::size_t true_positives = 0; ///< one-to-one matches
+    std::size_t count = 0;     ///< predicted instances (labels != 0 with >= min_points points)
+    std::size_t gt_count = 0;  ///< ground-truth fruit
+    std::size_t true_positives = 0;  ///< one-to-one matches
     double precision = 0, recall = 0, f1 = 0, recovery = 0;
     std::vector<std::uint32_t> merged;  ///< predictions holding > share of >= 2 fruit
     std::vector<std::uint32_t> split;   ///< fruit with >= 2 predictions made mostly of it

@@ -18,15 +18,15 @@ struct CompareParams {
 struct DirectionStats {
     std::size_t points = 0;  ///< finite query points
     double mean = 0, median = 0, rms = 0, max = 0;
-    double within_tau = 0;   ///< fraction of query points with distance <= tau
+    double within_tau = 0;  ///< fraction of query points with distance <= tau
 };
 
 struct CompareResult {
     DirectionStats a_to_b, b_to_a;
-    double chamfer = 0;      ///< mean(a→b) + mean(b→a), not squared
-    double precision = 0;    ///< accuracy: a_to_b.within_tau (A = reconstruction)
-    double recall = 0;       ///< completeness: b_to_a.within_tau (B = reference)
-    double fscore = 0;       ///< 2PR / (P + R), 0 when both are 0 (Tanks and Temples)
+    double chamfer = 0;             ///< mean(a→b) + mean(b→a), not squared
+    double precision = 0;           ///< accuracy: a_to_b.within_tau (A = reconstruction)
+    double recall = 0;              ///< completeness: b_to_a.within_tau (B = reference)
+    double fscore = 0;              ///< 2PR / (P + R), 0 when both are 0 (Tanks and Temples)
     std::size_t b_voxels = 0;       ///< voxels occupied by B
     std::size_t shared_voxels = 0;  ///< of those, also occupied by A
     double interior_coverage = 0;   ///< shared_voxels / b_voxels (0 when B is empty)

@@ -19,9 +19,9 @@ struct Interval {
 
 /// Parameters of color_filter(). Channels are in [0, 1]. Every rule given must hold (AND).
 struct ColorFilterParams {
-    std::optional<double> min_mean;   ///< keep iff (R+G+B)/3 > min_mean (strict; author script)
-    std::optional<double> min_value;  ///< keep iff HSV value max(R,G,B) > min_value (strict)
-    std::optional<Interval> hue_deg;  ///< keep iff hue in [lo, hi] degrees; grey never matches
+    std::optional<double> min_mean;      ///< keep iff (R+G+B)/3 > min_mean (strict; author script)
+    std::optional<double> min_value;     ///< keep iff HSV value max(R,G,B) > min_value (strict)
+    std::optional<Interval> hue_deg;     ///< keep iff hue in [lo, hi] degrees; grey never matches
     std::optional<Interval> saturation;  ///< keep iff HSV saturation in [lo, hi] (0..1)
     std::optional<Interval> value;       ///< keep iff HSV value in [lo, hi] (0..1)
     bool invert = false;                 ///< keep exactly the points the rules reject

@@ -12,7 +12,7 @@ struct CropParams {
     static constexpr double kInf = std::numeric_limits<double>::infinity();
     std::array<double, 3> min{-kInf, -kInf, -kInf};  ///< lower corner x,y,z (included)
     std::array<double, 3> max{kInf, kInf, kInf};     ///< upper corner x,y,z (included)
-    bool invert = false;  ///< keep the points outside the box instead
+    bool invert = false;                             ///< keep the points outside the box instead
 
     void validate() const;
 };

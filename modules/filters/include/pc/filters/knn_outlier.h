@@ -11,8 +11,8 @@ namespace pc::filters {
 /// Parameters of knn_outlier(). Score = mean distance to the k nearest other points.
 struct KnnOutlierParams {
     std::uint32_t k = 5;  ///< neighbours averaged, the point itself NOT counted (sklearn k+1)
-    double drop_percentile = 10;  ///< outlier iff score >= the (100 - P)th percentile (numpy
-                                  ///< linear interpolation); 0 drops nothing. Range [0, 100)
+    double drop_percentile = 10;    ///< outlier iff score >= the (100 - P)th percentile (numpy
+                                    ///< linear interpolation); 0 drops nothing. Range [0, 100)
     std::optional<double> std_mul;  ///< if set: outlier iff score > mean + M·σ (sample σ, as PCL
                                     ///< and Open3D); replaces the percentile rule
 

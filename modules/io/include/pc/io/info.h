@@ -17,10 +17,10 @@ struct ElementStats {
 
 struct FieldInfo {
     std::string name;
-    char type = '?';            ///< I, U or F
-    std::size_t size = 0;       ///< bytes per element
-    std::uint32_t count = 1;    ///< elements per point
-    bool packed_colour = false; ///< rgb/rgba: no numeric statistics
+    char type = '?';                  ///< I, U or F
+    std::size_t size = 0;             ///< bytes per element
+    std::uint32_t count = 1;          ///< elements per point
+    bool packed_colour = false;       ///< rgb/rgba: no numeric statistics
     std::vector<ElementStats> stats;  ///< one per element; empty for `_` and packed colour
 };
 
@@ -32,7 +32,7 @@ struct CloudInfo {
     std::vector<FieldInfo> fields;
     bool has_xyz = false;
     std::array<double, 3> bbox_min{}, bbox_max{};  ///< over points with finite x, y, z
-    std::uint64_t non_finite_points = 0;  ///< points whose x, y or z is NaN or infinite
+    std::uint64_t non_finite_points = 0;           ///< points whose x, y or z is NaN or infinite
     std::string colour;  ///< "rgb", "rgba", "red green blue", "r g b" or "" when none
     std::array<float, 7> viewpoint{};
 };

@@ -11,7 +11,8 @@ namespace pc::io {
 [[nodiscard]] std::vector<std::uint8_t> lzf_compress(std::span<const std::uint8_t> in);
 
 /// Decodes `in` into exactly `out.size()` bytes. Every back-reference and literal run is bounds
-/// checked; throws pc::IoError if the stream is corrupt or does not produce exactly out.size() bytes.
+/// checked; throws pc::IoError if the stream is corrupt or does not produce exactly out.size()
+/// bytes.
 void lzf_decompress(std::span<const std::uint8_t> in, std::span<std::uint8_t> out);
 
 }  // namespace pc::io

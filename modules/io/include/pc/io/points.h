@@ -58,7 +58,8 @@ struct Rgb {
 
 /// The values of integer field `name` (any I/U type, one per point). Throws pc::IoError when the
 /// field is missing, not an integer, has COUNT > 1, or holds a value outside 0..4294967295.
-[[nodiscard]] std::vector<std::uint32_t> labels(const Blob& blob, const std::string& name = "label");
+[[nodiscard]] std::vector<std::uint32_t> labels(const Blob& blob,
+                                                const std::string& name = "label");
 
 /// Marker for points that belong to no group in aggregate().
 inline constexpr std::uint32_t kNoGroup = 0xffffffffu;

@@ -36,7 +36,7 @@ struct ChainParams {
     std::optional<filters::VoxelParams> voxel;
     std::optional<filters::KnnOutlierParams> knn;
     segmentation::DbscanParams dbscan;
-    EpsRule eps;            ///< how dbscan.eps is chosen (fixed by default)
+    EpsRule eps;  ///< how dbscan.eps is chosen (fixed by default)
     std::optional<segmentation::RecursiveSplitParams> split;
     std::uint32_t count_min_points = 1;  ///< clusters with fewer points are not counted
 };

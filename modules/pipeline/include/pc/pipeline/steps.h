@@ -33,12 +33,9 @@ struct KnnOutput {
                                      const KnnOutput& out = {});
 
 /// Writes `label` (U 4). Unless the rule is fixed, eps is estimated first and reported in the note.
-[[nodiscard]] Step apply_dbscan(io::Blob in,
-                                segmentation::DbscanParams p,
-                                const EpsRule& eps = {});
+[[nodiscard]] Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps = {});
 /// Reads and rewrites `label`.
-[[nodiscard]] Step apply_recursive_split(io::Blob in,
-                                         const segmentation::RecursiveSplitParams& p);
+[[nodiscard]] Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.
 struct ChainResult {
@@ -47,12 +44,14 @@ struct ChainResult {
 };
 /// `in` is taken by value: pass a temporary (or std::move) and it is not copied. `progress`,
 /// when set, receives each step's note as soon as the step is done (pc_fruitcount -v).
-[[nodiscard]] ChainResult run_chain(io::Blob in, const ChainParams& p,
+[[nodiscard]] ChainResult run_chain(io::Blob in,
+                                    const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
 
 /// The clusters of `label` in a labelled cloud (pc_count, pc_fruitcount); an empty cloud has none
 /// and needs no label field. Clusters with fewer than `min_points` points are not counted.
-[[nodiscard]] segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min_points);
+[[nodiscard]] segmentation::ClusterSummary summarize(const io::Blob& labelled,
+                                                     std::size_t min_points);
 
 /// The count report of a labelled cloud, as JSON text (pc_count, pc_fruitcount):
 /// count, noise_points, small_clusters, clusters [{id, points, centroid, aabb {min, max}}],

@@ -9,9 +9,9 @@ namespace pc::pipeline {
 struct TransformSpec {
     enum class Normalize { kNone, kMeanRadius, kDiagonal };
     features::Matrix4 matrix = features::Matrix4::Identity();
-    bool center = false;                    ///< then move the centroid to the origin
-    Normalize normalize = Normalize::kNone; ///< then scale about the centroid to unit mean radius
-                                            ///< or unit bounding-box diagonal
+    bool center = false;                     ///< then move the centroid to the origin
+    Normalize normalize = Normalize::kNone;  ///< then scale about the centroid to unit mean radius
+                                             ///< or unit bounding-box diagonal
 };
 
 /// Transforms x y z (F 4 or F 8, computed in double, stored in the field's own type) and, when

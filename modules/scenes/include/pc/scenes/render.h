@@ -26,20 +26,20 @@ enum class Mode {
 /// Parameters of render().
 struct RenderParams {
     Mode mode = Mode::kExplicit;
-    double voxel = 0.004;              ///< voxel edge, m (explicit geometry, surface sampling)
+    double voxel = 0.004;  ///< voxel edge, m (explicit geometry, surface sampling)
     // implicit
-    std::uint32_t cameras = 72;        ///< on three rings (elevation 5°, 30°, 60°) around the canopy
-    std::uint32_t min_views = 2;       ///< a surface voxel is exported when this many cameras see it
-    double surface_noise = 0.3;        ///< σ of the jitter of implicit points, in voxels
-    double bridge_gap = 0.5;           ///< bridge fruit whose gap is below this × the smaller radius
-    double bridge_probability = 0.6;   ///< chance that such a pair gets a noise bridge
-    double floaters = 0.05;            ///< floater blobs per fruit
+    std::uint32_t cameras = 72;   ///< on three rings (elevation 5°, 30°, 60°) around the canopy
+    std::uint32_t min_views = 2;  ///< a surface voxel is exported when this many cameras see it
+    double surface_noise = 0.3;   ///< σ of the jitter of implicit points, in voxels
+    double bridge_gap = 0.5;      ///< bridge fruit whose gap is below this × the smaller radius
+    double bridge_probability = 0.6;  ///< chance that such a pair gets a noise bridge
+    double floaters = 0.05;           ///< floater blobs per fruit
     // degraded
-    double recall = 0.44;              ///< mean fraction of each fruit's voxels kept
+    double recall = 0.44;  ///< mean fraction of each fruit's voxels kept
     // clutter (every mode)
-    double leaf_leak = 0.1;            ///< fraction of leaves exported as green points
-    double background = 0.1;           ///< dark ground points, as a fraction of fruit points
-    double outliers = 0.005;           ///< bright sparse points, as a fraction of fruit points
+    double leaf_leak = 0.1;   ///< fraction of leaves exported as green points
+    double background = 0.1;  ///< dark ground points, as a fraction of fruit points
+    double outliers = 0.005;  ///< bright sparse points, as a fraction of fruit points
     std::uint64_t seed = 1;
 
     void validate() const;  ///< throws pc::InvalidArgument naming the field

@@ -28,24 +28,24 @@ struct Leaf {
 struct Scene {
     std::vector<Fruit> fruits;
     std::vector<Leaf> leaves;
-    Vec3 canopy{1, 1, 1};                  ///< half axes of the canopy ellipsoid
+    Vec3 canopy{1, 1, 1};  ///< half axes of the canopy ellipsoid
     std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
     std::uint32_t bunch_count = 0;
 };
 
 /// Parameters of make_scene(). species() fills them for the paper's three datasets.
 struct SceneParams {
-    std::uint32_t fruit_count = 152;   ///< fruit in the scene (the ground-truth count)
-    double fruit_radius = 0.035;       ///< mean fruit radius, m
-    double radius_spread = 0.1;        ///< radii uniform in radius·(1 ± spread)
-    std::uint32_t bunch_min = 1;       ///< fruit per bunch, uniform in [bunch_min, bunch_max]
+    std::uint32_t fruit_count = 152;  ///< fruit in the scene (the ground-truth count)
+    double fruit_radius = 0.035;      ///< mean fruit radius, m
+    double radius_spread = 0.1;       ///< radii uniform in radius·(1 ± spread)
+    std::uint32_t bunch_min = 1;      ///< fruit per bunch, uniform in [bunch_min, bunch_max]
     std::uint32_t bunch_max = 1;
-    double touch_gap = 0.002;          ///< gap between touching fruit of a bunch, uniform in [0, this]
-    double separation = 0.03;          ///< least gap between fruit of different bunches
-    Vec3 canopy{1.0, 1.0, 0.8};        ///< half axes of the canopy ellipsoid, m
-    double shell = 0.5;                ///< bunches sit between this fraction of the canopy and its edge
-    double leaf_density = 300;         ///< leaves per m³ of canopy
-    double leaf_radius = 0.035;        ///< mean leaf radius, m
+    double touch_gap = 0.002;    ///< gap between touching fruit of a bunch, uniform in [0, this]
+    double separation = 0.03;    ///< least gap between fruit of different bunches
+    Vec3 canopy{1.0, 1.0, 0.8};  ///< half axes of the canopy ellipsoid, m
+    double shell = 0.5;          ///< bunches sit between this fraction of the canopy and its edge
+    double leaf_density = 300;   ///< leaves per m³ of canopy
+    double leaf_radius = 0.035;  ///< mean leaf radius, m
     std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
     std::uint64_t seed = 1;
 

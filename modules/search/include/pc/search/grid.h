@@ -57,17 +57,22 @@ public:
     /// The k nearest points to cloud point `self` other than itself: indices and d², ascending
     /// by (d², index). Fewer than k when the cloud has fewer other finite points; none when
     /// `self` is not finite.
-    void knn(std::uint32_t self, std::size_t k, std::vector<std::uint32_t>& idx,
+    void knn(std::uint32_t self,
+             std::size_t k,
+             std::vector<std::uint32_t>& idx,
              std::vector<double>& d2) const;
 
     /// The k nearest indexed points to any query point q (need not be in the cloud), as knn().
-    void knn_point(const pcl::PointXYZ& q, std::size_t k, std::vector<std::uint32_t>& idx,
+    void knn_point(const pcl::PointXYZ& q,
+                   std::size_t k,
+                   std::vector<std::uint32_t>& idx,
                    std::vector<double>& d2) const;
 
     /// Calls f(i, idx, d2) for every finite point i with the same answer as knn(i, k, ...), working
     /// cell by cell in parallel (OpenMP). f is called concurrently for distinct i.
     void all_knn(std::size_t k,
-                 const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&,
+                 const std::function<void(std::uint32_t,
+                                          const std::vector<std::uint32_t>&,
                                           const std::vector<double>&)>& f) const;
 
     // Cell-level access for algorithms that sweep the grid: points are "sorted positions"
@@ -82,16 +87,17 @@ public:
     /// with neighbours = neighbour_cells(c) (kAfter: those above c, in the same order).
     /// f is called concurrently for distinct cells. `needs_neighbours`, when given, says which
     /// cells need them: the others get an empty list and cost no look-ups.
-    void sweep_cells(
-        const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
-        const std::function<bool(std::uint32_t)>& needs_neighbours = {},
-        Neighbours which = Neighbours::kAll) const;
+    void sweep_cells(const std::function<void(std::uint32_t, const std::vector<std::uint32_t>&)>& f,
+                     const std::function<bool(std::uint32_t)>& needs_neighbours = {},
+                     Neighbours which = Neighbours::kAll) const;
     /// The existing cells among c's 3x3x3 neighbourhood (c included), nearest rows first: c's own
     /// row (x, y), then the four rows sharing a face with it, then the four diagonal ones; by z
     /// within a row. Sweeps that stop once they have found enough look at the near cells first.
     void neighbour_cells(std::size_t c, std::vector<std::uint32_t>& out) const;
     /// Original cloud index of sorted position s (s itself once renumbered).
-    [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const { return identity_ ? s : order_[s]; }
+    [[nodiscard]] std::uint32_t index_of(std::uint32_t s) const {
+        return identity_ ? s : order_[s];
+    }
     /// Coordinates (x, y, z) of sorted position s; position s + 1 is point_stride() floats on.
     [[nodiscard]] const float* point(std::uint32_t s) const { return xyz_at_ + stride_ * s; }
     /// Floats from one sorted position's coordinates to the next (3 unless built in place).
@@ -156,12 +162,20 @@ private:
     struct RowCursor;
     void build_tree() const;
     /// The cells of row (x, y) with z_lo <= z <= z_hi, as [first, last).
-    [[nodiscard]] std::pair<const Cell*, const Cell*> row_span(std::int64_t x, std::int64_t y, std::int64_t z_lo,
+    [[nodiscard]] std::pair<const Cell*, const Cell*> row_span(std::int64_t x,
+                                                               std::int64_t y,
+                                                               std::int64_t z_lo,
                                                                std::int64_t z_hi) const;
-    void search(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
-                std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
-    void tree_knn(const pcl::PointXYZ& q, std::uint32_t self, std::size_t k,
-                  std::vector<std::uint32_t>& idx, std::vector<double>& d2) const;
+    void search(const pcl::PointXYZ& q,
+                std::uint32_t self,
+                std::size_t k,
+                std::vector<std::uint32_t>& idx,
+                std::vector<double>& d2) const;
+    void tree_knn(const pcl::PointXYZ& q,
+                  std::uint32_t self,
+                  std::size_t k,
+                  std::vector<std::uint32_t>& idx,
+                  std::vector<double>& d2) const;
 
     // A k-d tree over the occupied cells, built on first need: the ring search bounds its work at
     // a few rings, and points far from everything else (floaters) are answered by the tree.
@@ -177,24 +191,24 @@ private:
 
     double cell_ = 1;
     double origin_[3] = {0, 0, 0};
-    std::int64_t dims_[3] = {1, 1, 1};  // cells per axis
-    int bits_[3] = {0, 0, 0};           // bits per axis in a key
+    std::int64_t dims_[3] = {1, 1, 1};      // cells per axis
+    int bits_[3] = {0, 0, 0};               // bits per axis in a key
     std::vector<std::uint32_t> row_begin_;  // first cell of each distinct (x, y) row, + sentinel
     std::vector<std::uint64_t> row_key_;    // key >> bits_[2] of each row
     std::vector<std::uint32_t> row_table_;  // open addressing on row keys: row index + 1
-    std::vector<float> xyz_;              // sorted by cell, 3 floats per point (unless in place)
-    const float* xyz_at_ = nullptr;       // x of sorted position 0: xyz_, or the sorted records
-    std::size_t stride_ = 3;              // floats from one sorted position to the next
-    std::vector<std::uint32_t> order_;    // original index of each sorted point (in place: all
-                                          // points, the non-finite ones after finite_count())
+    std::vector<float> xyz_;                // sorted by cell, 3 floats per point (unless in place)
+    const float* xyz_at_ = nullptr;         // x of sorted position 0: xyz_, or the sorted records
+    std::size_t stride_ = 3;                // floats from one sorted position to the next
+    std::vector<std::uint32_t> order_;      // original index of each sorted point (in place: all
+                                            // points, the non-finite ones after finite_count())
     std::size_t finite_ = 0;
-    XyzRecords sorted_;                   // the records sorted in place, if in_place_
+    XyzRecords sorted_;  // the records sorted in place, if in_place_
     bool in_place_ = false;
-    bool identity_ = false;  // renumbered: index_of(s) == s, no order kept
+    bool identity_ = false;    // renumbered: index_of(s) == s, no order kept
     std::vector<Cell> cells_;  // the occupied cells in key order, then the sentinel
     std::uint64_t row_mask_ = 0;
     int row_shift_ = 60;
-    XyzView points_;  // the indexed points, for knn(i)
+    XyzView points_;          // the indexed points, for knn(i)
     bool has_points_ = true;  // false when built in place or renumbered: knn(i) throws
 };
 
@@ -206,7 +220,8 @@ private:
 
 template <class F>
 void Grid::for_each_within(const pcl::PointXYZ& q, double radius, F&& f) const {
-    for_each_within_if(q, radius, [](std::uint32_t) { return true; }, f);
+    for_each_within_if(
+        q, radius, [](std::uint32_t) { return true; }, f);
 }
 
 template <class Keep, class F>

@@ -11,9 +11,9 @@ namespace pc::segmentation {
 
 struct ClusterInfo {
     std::uint32_t id = 0;
-    std::size_t points = 0;                 ///< finite member points
-    std::array<double, 3> centroid{};       ///< mean of the members' x, y, z
-    std::array<double, 3> min{}, max{};     ///< axis-aligned bounding box
+    std::size_t points = 0;              ///< finite member points
+    std::array<double, 3> centroid{};    ///< mean of the members' x, y, z
+    std::array<double, 3> min{}, max{};  ///< axis-aligned bounding box
 };
 
 struct ClusterSummary {

@@ -13,18 +13,20 @@ namespace pc::segmentation {
 /// from a point to its nearest other point) or of the fruit radius R estimated from the clusters,
 /// so the result does not change when the cloud is scaled or rotated.
 struct CoreSplitParams {
-    double core_fraction = 0.5;      ///< a core point is deeper than this × R
-    double boundary_radius = 2.0;    ///< × s: the neighbourhood that decides whether a point is inside
-    double boundary_offset = 0.2;    ///< boundary iff |mean neighbour offset| > this × the radius
-    double isotropy = 0.5;           ///< ... or the neighbours' smallest/largest variance < this (a sheet)
-    double link = 1.75;              ///< × s: points closer than this are adjacent (lattice diagonals: √3)
-    double min_core_fraction = 0.1;  ///< cores with fewer points than this × an ideal core are ignored
+    double core_fraction = 0.5;  ///< a core point is deeper than this × R
+    double boundary_radius =
+        2.0;  ///< × s: the neighbourhood that decides whether a point is inside
+    double boundary_offset = 0.2;  ///< boundary iff |mean neighbour offset| > this × the radius
+    double isotropy = 0.5;  ///< ... or the neighbours' smallest/largest variance < this (a sheet)
+    double link = 1.75;  ///< × s: points closer than this are adjacent (lattice diagonals: √3)
+    double min_core_fraction =
+        0.1;  ///< cores with fewer points than this × an ideal core are ignored
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
-    double min_relative_size = 0;    ///< ... and those with fewer than this × the median final size
-    bool merge_fragments = true;     ///< join solid parts whose union fits in one fruit
-    double fragment_extent = 1.5;    ///< ... within this × the fruit's radius of the union's centroid
-    bool hollow = true;              ///< split hollow clusters (no interior at all) into spheres
-    HollowSplitParams spheres;       ///< how (split_hollow)
+    double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
+    bool merge_fragments = true;   ///< join solid parts whose union fits in one fruit
+    double fragment_extent = 1.5;  ///< ... within this × the fruit's radius of the union's centroid
+    bool hollow = true;            ///< split hollow clusters (no interior at all) into spheres
+    HollowSplitParams spheres;     ///< how (split_hollow)
 
     void validate() const;
 };
@@ -32,14 +34,14 @@ struct CoreSplitParams {
 struct CoreSplitResult {
     std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
     std::uint32_t cluster_count = 0;
-    std::uint32_t splits = 0;     ///< clusters cut into two or more parts
-    double spacing = 0;           ///< s
-    double fruit_radius = 0;      ///< R: the median over clusters of their greatest depth
-    double largest_depth = 0;     ///< the 98th percentile of the same (the best-kept fruit)
-    double hollow_radius = 0;     ///< hollow clusters: median radius of the single-fruit-like ones
-    std::uint32_t hollow_splits = 0;  ///< hollow clusters cut into spheres
+    std::uint32_t splits = 0;  ///< clusters cut into two or more parts
+    double spacing = 0;        ///< s
+    double fruit_radius = 0;   ///< R: the median over clusters of their greatest depth
+    double largest_depth = 0;  ///< the 98th percentile of the same (the best-kept fruit)
+    double hollow_radius = 0;  ///< hollow clusters: median radius of the single-fruit-like ones
+    std::uint32_t hollow_splits = 0;     ///< hollow clusters cut into spheres
     std::uint32_t merged_fragments = 0;  ///< hollow parts joined to another on the same sphere
-    std::vector<float> depth;     ///< per point: distance to the nearest boundary point (0 for noise)
+    std::vector<float> depth;  ///< per point: distance to the nearest boundary point (0 for noise)
 };
 
 /// Separates touching objects inside each cluster at the necks between their solid cores: a
@@ -53,11 +55,11 @@ struct CoreSplitResult {
 /// cut into spheres instead (split_hollow), with the fruit radius read from the curvature of the
 /// surfaces (median radius of spherical patches within 8 s of evenly strided points; without 20
 /// such patches they stay whole); a cluster whose own sphere fit has RMS < 0.15 × its radius and a
-/// radius up to 1.33 × the fruit's is one fruit. Afterwards hollow pieces lying on one fruit-sized sphere (fitted
-/// centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0 stays noise;
-/// non-finite points become noise. Deterministic.
-/// `labels` (one per point) is taken by value: move it in and it is freed once the clustered
-/// points are copied into the records the steps sort, before the steps allocate.
+/// radius up to 1.33 × the fruit's is one fruit. Afterwards hollow pieces lying on one fruit-sized
+/// sphere (fitted centres closer than R/2) are joined: occlusion cuts fruit into caps. Label 0
+/// stays noise; non-finite points become noise. Deterministic. `labels` (one per point) is taken by
+/// value: move it in and it is freed once the clustered points are copied into the records the
+/// steps sort, before the steps allocate.
 [[nodiscard]] CoreSplitResult core_split(const XyzView& points,
                                          std::vector<std::uint32_t> labels,
                                          const CoreSplitParams& params);

@@ -12,8 +12,8 @@ inline constexpr std::uint32_t kNoise = 0;
 
 /// Parameters of dbscan(). eps has no universal value: it is in cloud units.
 struct DbscanParams {
-    double eps = 0.015;            ///< neighbour iff distance <= eps (scikit-learn), cloud units
-    std::uint32_t min_points = 10; ///< neighbours a core point needs, ITSELF INCLUDED (sklearn)
+    double eps = 0.015;             ///< neighbour iff distance <= eps (scikit-learn), cloud units
+    std::uint32_t min_points = 10;  ///< neighbours a core point needs, ITSELF INCLUDED (sklearn)
 
     void validate() const;
 };

@@ -27,8 +27,8 @@ struct Sphere {
 /// Parameters of split_hollow(); lengths are multiples of the fruit radius R and the spacing s.
 struct HollowSplitParams {
     double radius_low = 0.75, radius_high = 1.33;  ///< accepted sphere radii, × R
-    double band = 0.15;            ///< inlier band, × R (at least 1.5 s)
-    double min_inliers = 0.25;     ///< a sphere needs this × the points of a typical single fruit
+    double band = 0.15;                            ///< inlier band, × R (at least 1.5 s)
+    double min_inliers = 0.25;  ///< a sphere needs this × the points of a typical single fruit
     std::uint32_t iterations = 300;  ///< RANSAC samples per sphere
     std::uint64_t seed = 0;
 };
@@ -44,8 +44,11 @@ struct HollowSplitParams {
                                                       double spacing,
                                                       double typical_points,
                                                       const HollowSplitParams& params);
-[[nodiscard]] inline std::vector<std::uint32_t> split_hollow(const Cloud& cloud, std::span<const std::uint32_t> members,
-                                                             double fruit_radius, double spacing, double typical_points,
+[[nodiscard]] inline std::vector<std::uint32_t> split_hollow(const Cloud& cloud,
+                                                             std::span<const std::uint32_t> members,
+                                                             double fruit_radius,
+                                                             double spacing,
+                                                             double typical_points,
                                                              const HollowSplitParams& params) {
     return split_hollow(XyzView(cloud), members, fruit_radius, spacing, typical_points, params);
 }
