@@ -3,6 +3,10 @@
 # Debian bookworm ships it; scripts/setup.sh installs it). To fix: bash scripts/check_format.sh --fix
 set -euo pipefail
 cd "$(dirname "$0")/.."
+if ! git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+    echo "check_format: not a git checkout; skipped" >&2
+    exit 0
+fi
 mapfile -t files < <(git ls-files '*.cpp' '*.h')
 if [ "${1:-}" = "--fix" ]; then
     clang-format-14 -i "${files[@]}"

@@ -10,6 +10,7 @@
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
 #include <pc/evaluation/instances.h>
+#include <pc/evaluation/truth.h>
 #include <pc/io/points.h>
 #include <pc/pipeline/presets.h>
 
@@ -18,40 +19,19 @@ using nlohmann::ordered_json;
 
 namespace {
 
-struct Truth {
-    std::vector<ev::TruthFruit> fruits;
-    std::size_t fruit_count = 0;
-};
-
-/// Reads {"fruit_count": N, "fruits": [{"id", "centre": [x, y, z], "radius"}, ...]} (pc_synth
-/// --truth).
-Truth read_truth(const std::string& path) {
+/// The ground truth of `path` (pc_synth --truth), errors prefixed by the path.
+ev::Truth read_truth(const std::string& path) {
     std::ifstream f(path, std::ios::binary);
     if (!f) {
         throw pc::IoError(path + ": cannot open the ground truth");
     }
-    Truth t;
+    std::stringstream text;
+    text << f.rdbuf();
     try {
-        const auto j = nlohmann::json::parse(f);
-        for (const auto& x : j.at("fruits")) {
-            ev::TruthFruit fr;
-            fr.id = x.at("id").get<std::uint32_t>();
-            fr.centre = x.at("centre").get<std::array<double, 3>>();
-            fr.radius = x.at("radius").get<double>();
-            if (fr.id == 0 || !(fr.radius > 0) ||
-                !std::isfinite(fr.centre[0] + fr.centre[1] + fr.centre[2])) {
-                throw pc::IoError("fruit ids must be > 0, radii > 0 and centres finite");
-            }
-            t.fruits.push_back(fr);
-        }
-        t.fruit_count =
-            j.contains("fruit_count") ? j.at("fruit_count").get<std::size_t>() : t.fruits.size();
-    } catch (const nlohmann::json::exception& e) {
-        throw pc::IoError(path + ": not a ground-truth file (" + std::string(e.what()) + ")");
+        return ev::parse_truth(text.str());
     } catch (const pc::IoError& e) {
         throw pc::IoError(path + ": " + e.what());
     }
-    return t;
 }
 
 std::string num(double v) { return std::isfinite(v) ? pc::format_number(v) : ""; }
@@ -114,7 +94,7 @@ int main(int argc, char** argv) {
             throw pc::IoError(input + ": no '" + gt_field +
                               "' field (give --truth to match by centroid)");
         }
-        const Truth truth = truth_path.empty() ? Truth{} : read_truth(truth_path);
+        const ev::Truth truth = truth_path.empty() ? ev::Truth{} : read_truth(truth_path);
         const auto labels = [&](const std::string& field) {
             try {
                 return blob.size() ? pc::io::labels(blob, field) : std::vector<std::uint32_t>{};
