@@ -215,8 +215,9 @@ InstanceScores score_by_centroid(const Cloud& cloud,
         }
     }
     std::vector<Match> candidates;
-    for (const auto& [label, s] : sums) {
+    for (const auto& [predicted_label, s] : sums) {
         const std::array<double, 3> c{s[0] / s[3], s[1] / s[3], s[2] / s[3]};
+        const std::uint32_t label = predicted_label;  // clang 14 cannot capture a binding
         near(c, [&](const TruthFruit& f, double d) { candidates.push_back({label, f.id, d, 0}); });
     }
     std::sort(candidates.begin(), candidates.end(), [](const Match& a, const Match& b) {
