@@ -1,5 +1,3 @@
-#include <pc/evaluation/truth.h>
-
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -7,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
+#include <pc/evaluation/truth.h>
 
 namespace pc::evaluation {
 

@@ -18,19 +18,19 @@ TEST(Truth, ReadsFruitAndTheCount) {
     EXPECT_EQ(t.fruits[0].id, 4u);
     EXPECT_EQ(t.fruits[0].centre, (std::array<double, 3>{0.5, -1, 2.25}));
     EXPECT_EQ(t.fruits[1].radius, 1e-3);
-    EXPECT_EQ(parse_truth(R"({"fruits": [{"id": 1, "centre": [1, 2, 3], "radius": 2}]})").fruit_count,
-              1u);
+    EXPECT_EQ(
+        parse_truth(R"({"fruits": [{"id": 1, "centre": [1, 2, 3], "radius": 2}]})").fruit_count,
+        1u);
 }
 
 TEST(Truth, RefusesWhatIsNotAGroundTruthFile) {
-    for (const std::string bad : {
-             "", "not json", "[]", R"({"fruit": []})", R"({"fruits": 3})",
-             R"({"fruits": [{"id": 1, "centre": [1, 2], "radius": 1}]})",
-             R"({"fruits": [{"id": 0, "centre": [1, 2, 3], "radius": 1}]})",
-             R"({"fruits": [{"id": 1, "centre": [1, 2, 3], "radius": -1}]})",
-             R"({"fruits": [{"id": -1, "centre": [1, 2, 3], "radius": 1}]})",
-             R"({"fruits": [{"id": "a", "centre": [1, 2, 3], "radius": 1}]})",
-             R"({"fruits": [], "fruit_count": -2})"}) {
+    for (const std::string bad : {"", "not json", "[]", R"({"fruit": []})", R"({"fruits": 3})",
+                                  R"({"fruits": [{"id": 1, "centre": [1, 2], "radius": 1}]})",
+                                  R"({"fruits": [{"id": 0, "centre": [1, 2, 3], "radius": 1}]})",
+                                  R"({"fruits": [{"id": 1, "centre": [1, 2, 3], "radius": -1}]})",
+                                  R"({"fruits": [{"id": -1, "centre": [1, 2, 3], "radius": 1}]})",
+                                  R"({"fruits": [{"id": "a", "centre": [1, 2, 3], "radius": 1}]})",
+                                  R"({"fruits": [], "fruit_count": -2})"}) {
         EXPECT_THROW((void)parse_truth(bad), IoError) << bad;
     }
 }
