@@ -3,12 +3,12 @@
 # writes the seed corpora (the tests' malformed and edge-case inputs, the sample clouds and JSON
 # files) and runs each target for a fixed number of inputs from a fixed seed, so that a run is
 # repeatable. Fails, keeping the crashing input in build-fuzz/findings/, when a target finds one.
-#   bash scripts/fuzz.sh [RUNS]        (default 60000 inputs a target; scripts/test.sh under CI)
+#   bash scripts/fuzz.sh [RUNS]        (default 200000 inputs a target, as scripts/test.sh under CI)
 #   bash scripts/fuzz.sh --time S      (explore for S seconds a target, random seed)
 # A finding is fixed with a regression test: add the input to tests/support/corpus.h.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-limit=(-runs="${1:-60000}" -seed=1)
+limit=(-runs="${1:-200000}" -seed=1)
 if [ "${1:-}" = "--time" ]; then limit=(-max_total_time="${2:?seconds}"); fi
 
 packages=(clang-14 libclang-rt-14-dev libomp-14-dev)

@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Quick start, command 2: install what is missing, build with tests, run the whole suite.
-# Under CI (CI=true) warnings are errors and the suite runs a second time under ASan + UBSan.
+# Under CI (CI=true) warnings are errors, the readers are fuzzed for a fixed number of inputs
+# (scripts/fuzz.sh) and the suite runs a second time under ASan + UBSan.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 bash scripts/check_format.sh
 bash scripts/build.sh ON
 ctest --test-dir build --output-on-failure -j2
+if [ "${CI:-}" = "true" ] || [ "${PC_FUZZ_RUN:-}" = "1" ]; then
+    bash scripts/fuzz.sh 200000
+fi
 if [ "${CI:-}" = "true" ] || [ "${PC_SANITIZE_RUN:-}" = "1" ]; then
     cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPC_SANITIZE=ON \
         -DPC_BUILD_TESTS=ON >/dev/null

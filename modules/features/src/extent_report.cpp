@@ -1,5 +1,3 @@
-#include <pc/features/extent_report.h>
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -8,6 +6,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/features/extent_report.h>
 
 namespace pc::features {
 
@@ -40,8 +39,7 @@ ordered_json extent_json(const Extent& e) {
 
 ordered_json spread(std::vector<double> v) {
     std::vector<double> a = v, b = v, c = v;
-    const double q1 = percentile(a, 25), med = percentile(b, 50),
-                 q3 = percentile(c, 75);
+    const double q1 = percentile(a, 25), med = percentile(b, 50), q3 = percentile(c, 75);
     if (v.empty()) {
         return nullptr;
     }
@@ -97,9 +95,8 @@ std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat forma
     } else if (format == ExtentFormat::kMarkdown) {
         out << "| Model | Points | Convex hull volume | Mean radius | Max radius | AABB volume "
                "|"
-            << (per_label
-                    ? " Clusters | Median cluster hull volume | Median cluster mean radius |"
-                    : "")
+            << (per_label ? " Clusters | Median cluster hull volume | Median cluster mean radius |"
+                          : "")
             << "\n| --- | ---: | ---: | ---: | ---: | ---: |"
             << (per_label ? " ---: | ---: | ---: |" : "") << '\n';
         for (const auto& r : rows) {

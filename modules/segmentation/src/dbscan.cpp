@@ -151,30 +151,24 @@ void DbscanParams::validate() const {
 
 namespace {
 
-/// dbscan() over `grid` (cells of at least eps) on the cloud's n points.
-DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& params) {
-    DbscanResult r;
-    const double eps2 = params.eps * params.eps;
-    const std::size_t m = grid.finite_count();  // work in the grid's sorted positions
-    if (m >= kNone) {
-        throw InvalidArgument("dbscan: at most 2^32 - 2 finite points, got " + std::to_string(m));
-    }
-
-    // 1. Core points: at least min_points neighbours within eps, itself included (stop counting
-    //    once there are enough; the own cell first, where most neighbours are). Then the core
-    //    points of each cell are joined among themselves (a cell-local union-find, written to the
-    //    forest: nobody else reads these entries in this pass) and numbered by local component.
-    ConcurrentForest forest(m);
-    // Per sorted position: 0 for a point that is not core, 1 + its local component (the
-    // component among the core points of its cell, below) for a core point. One byte for both.
-    std::vector<std::uint8_t> core(m, 0);
+/// Step 1 of dbscan(): the core points (at least min_points neighbours within eps, itself
+/// included; counting stops once there are enough, the own cell first, where most neighbours
+/// are). Then the core points of each cell are joined among themselves (a cell-local union-find,
+/// written to the forest: nobody else reads these entries in this pass) and numbered by local
+/// component: `core` per sorted position is 0 for a point that is not core, 1 + its local
+/// component for a core point; `comps` per cell the number of components (kMany: too many).
+void find_cores(const search::Grid& grid,
+                double eps2,
+                std::uint32_t min_points,
+                std::vector<std::uint8_t>& core,
+                std::vector<std::uint8_t>& comps,
+                ConcurrentForest& forest) {
     const std::size_t stride = grid.point_stride();
-    std::vector<std::uint8_t> comps(grid.cell_count());  // per cell; kMany = too many to track
     grid.sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         const std::uint32_t b = grid.cell_begin(c), e = grid.cell_end(c);
         for (std::uint32_t s = b; s < e; ++s) {
             const Near near(grid.point(s), eps2);
-            const std::uint32_t need = params.min_points;
+            const std::uint32_t need = min_points;
             std::uint32_t found = near.count(grid.point(b), stride, e - b, need);
             for (std::size_t k = 0; k < nb.size() && found < need; ++k) {
                 if (nb[k] != c) {
@@ -183,28 +177,69 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                                    grid.cell_end(nb[k]) - grid.cell_begin(nb[k]), need - found);
                 }
             }
-            core[s] = found >= params.min_points;
+            core[s] = found >= min_points;
         }
         local_components(grid, b, e, eps2, core, forest, comps[c]);
     });
+}
 
-    // 2. Components across cells: for each pair of neighbouring cells (each pair once), core
-    //    points within eps join their components. A pair of local components already joined is
-    //    not looked at again. (Skipping cells and points by the core points' bounding boxes cost
-    //    more than it saved, and 28 bytes a cell: measured on the 1M bench canopy, 83 -> 81 ms
-    //    and 6 MB less without.)
+/// Step 2 for the neighbouring cells c and nc: their core points within eps join their
+/// components. With few components a cell, a pair of local components already joined is not
+/// looked at again (one bit a pair).
+void join_cells(const search::Grid& grid,
+                double eps2,
+                std::uint32_t c,
+                std::uint32_t nc,
+                const std::vector<std::uint8_t>& core,
+                const std::vector<std::uint8_t>& comps,
+                ConcurrentForest& forest) {
+    const bool track = comps[c] != kMany && comps[nc] != kMany && comps[c] * comps[nc] <= 64;
+    std::uint64_t joined = 0;  // bit comp_s * comps[nc] + comp_t
+    const std::uint64_t all =
+        track ? (comps[c] * comps[nc] == 64 ? ~std::uint64_t{0}
+                                            : (std::uint64_t{1} << (comps[c] * comps[nc])) - 1)
+              : 0;
+    for (std::uint32_t s = grid.cell_begin(c); s < grid.cell_end(c) && (!track || joined != all);
+         ++s) {
+        if (!core[s]) {
+            continue;
+        }
+        const Near near(grid.point(s), eps2);
+        for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
+            if (!core[t]) {
+                continue;
+            }
+            const std::uint64_t bit =
+                track ? std::uint64_t{1} << ((core[s] - 1) * comps[nc] + (core[t] - 1)) : 0;
+            if ((joined & bit) != 0 || !near(grid.point(t))) {
+                continue;
+            }
+            forest.unite(s, t);
+            joined |= bit;
+        }
+    }
+}
+
+/// Step 2 of dbscan(): components across cells, each pair of neighbouring cells once. (Skipping
+/// cells and points by the core points' bounding boxes cost more than it saved, and 28 bytes a
+/// cell: measured on the 1M bench canopy, 83 -> 81 ms and 6 MB less without.)
+void join_across_cells(const search::Grid& grid,
+                       double eps2,
+                       const std::vector<std::uint8_t>& core,
+                       const std::vector<std::uint8_t>& comps,
+                       ConcurrentForest& forest) {
+    const auto first_core = [&](std::uint32_t cc) {
+        std::uint32_t s = grid.cell_begin(cc);
+        while (!core[s]) {
+            ++s;
+        }
+        return s;
+    };
     grid.sweep_cells(
         [&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
             if (comps[c] == 0) {
                 return;
             }
-            const auto first_core = [&](std::uint32_t cc) {
-                std::uint32_t s = grid.cell_begin(cc);
-                while (!core[s]) {
-                    ++s;
-                }
-                return s;
-            };
             const std::uint32_t first_c = comps[c] == 1 ? first_core(c) : 0;
             for (std::uint32_t nc : nb) {
                 if (nc <= c || comps[nc] == 0) {
@@ -214,42 +249,20 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
                     forest.find(first_c) == forest.find(first_core(nc))) {
                     continue;  // already joined through other cells
                 }
-                const bool track =
-                    comps[c] != kMany && comps[nc] != kMany && comps[c] * comps[nc] <= 64;
-                std::uint64_t joined = 0;  // bit comp_s * comps[nc] + comp_t
-                const std::uint64_t all =
-                    track ? (comps[c] * comps[nc] == 64
-                                 ? ~std::uint64_t{0}
-                                 : (std::uint64_t{1} << (comps[c] * comps[nc])) - 1)
-                          : 0;
-                for (std::uint32_t s = grid.cell_begin(c);
-                     s < grid.cell_end(c) && (!track || joined != all); ++s) {
-                    if (!core[s]) {
-                        continue;
-                    }
-                    const Near near(grid.point(s), eps2);
-                    for (std::uint32_t t = grid.cell_begin(nc); t < grid.cell_end(nc); ++t) {
-                        if (!core[t]) {
-                            continue;
-                        }
-                        const std::uint64_t bit =
-                            track ? std::uint64_t{1} << ((core[s] - 1) * comps[nc] + (core[t] - 1))
-                                  : 0;
-                        if ((joined & bit) != 0 || !near(grid.point(t))) {
-                            continue;
-                        }
-                        forest.unite(s, t);
-                        joined |= bit;
-                    }
-                }
+                join_cells(grid, eps2, c, nc, core, comps, forest);
             }
         },
         [&](std::uint32_t c) { return comps[c] != 0; }, search::Grid::Neighbours::kAfter);
+}
 
-    // 3. Each point's forest entry is set to its cluster's root: core points by their component
-    //    (the unions are done), border points by their nearest core point's (ties: the smallest
-    //    original index); noise keeps itself. A border entry is read by no find(): nothing links
-    //    to a non-core point.
+/// Step 3 of dbscan(): each point's forest entry is set to its cluster's root: core points by
+/// their component (the unions are done), border points by their nearest core point's (ties: the
+/// smallest original index); noise keeps itself. A border entry is read by no find(): nothing
+/// links to a non-core point.
+void point_to_roots(const search::Grid& grid,
+                    double eps2,
+                    const std::vector<std::uint8_t>& core,
+                    ConcurrentForest& forest) {
     auto& parent = forest.parent;
     grid.sweep_cells(
         [&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
@@ -284,10 +297,19 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
             return std::find(core.begin() + grid.cell_begin(c), core.begin() + grid.cell_end(c),
                              0) != core.begin() + grid.cell_end(c);
         });
+}
 
-    // 4. Number clusters by decreasing size, ties by smallest original member index. Each
-    //    component first gets a compact id, written to its members' labels: the roots' first
-    //    (numbered in position order), then every other member's from its root's.
+/// Step 4 of dbscan(): clusters numbered by decreasing size, ties by smallest original member
+/// index, as labels of the cloud's n points. Each component first gets a compact id, written to
+/// its members' labels: the roots' first (numbered in position order), then every other
+/// member's from its root's.
+DbscanResult number_clusters(const search::Grid& grid,
+                             std::size_t n,
+                             const std::vector<std::uint8_t>& core,
+                             const ConcurrentForest& forest) {
+    const auto& parent = forest.parent;
+    const std::size_t m = grid.finite_count();
+    DbscanResult r;
     r.labels.assign(n, kNone);
     r.core.assign(n, 0);
     std::uint32_t components = 0;
@@ -299,8 +321,7 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     }
     for (std::uint32_t s = 0; s < m; ++s) {
         const std::uint32_t root = parent[s].load(std::memory_order_relaxed);
-        if (root !=
-            s) {  // a member of root's cluster (a point that is its own root is a root or noise)
+        if (root != s) {  // a member of root's cluster (its own root: a root, or noise)
             r.labels[grid.index_of(s)] = r.labels[grid.index_of(root)];
         }
     }
@@ -325,6 +346,22 @@ DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& pa
     }
     r.cluster_count = static_cast<std::uint32_t>(roots.size());
     return r;
+}
+
+/// dbscan() over `grid` (cells of at least eps) on the cloud's n points, in the grid's sorted
+/// positions.
+DbscanResult run(const search::Grid& grid, std::size_t n, const DbscanParams& params) {
+    const std::size_t m = grid.finite_count();
+    if (m >= kNone) {
+        throw InvalidArgument("dbscan: at most 2^32 - 2 finite points, got " + std::to_string(m));
+    }
+    const double eps2 = params.eps * params.eps;
+    ConcurrentForest forest(m);
+    std::vector<std::uint8_t> core(m, 0), comps(grid.cell_count());
+    find_cores(grid, eps2, params.min_points, core, comps, forest);
+    join_across_cells(grid, eps2, core, comps, forest);
+    point_to_roots(grid, eps2, core, forest);
+    return number_clusters(grid, n, core, forest);
 }
 
 }  // namespace

@@ -32,7 +32,10 @@ std::vector<ExtentRow> rows() {
     Extent flat;  // three points: no hull
     flat.points = 3;
     flat.hull_volume = flat.hull_area = std::nan("");
-    return {{.name = "cube", .input = "cube.pcd", .whole = unit_cube(), .clusters = {{1, unit_cube()}, {2, flat}}}};
+    return {{.name = "cube",
+             .input = "cube.pcd",
+             .whole = unit_cube(),
+             .clusters = {{1, unit_cube()}, {2, flat}}}};
 }
 
 TEST(ExtentReport, JsonHoldsEveryFieldAndNullForWhatCannotBeComputed) {
