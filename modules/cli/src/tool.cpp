@@ -279,7 +279,94 @@ struct Tool::Impl {
     std::string inputs_help;
     std::size_t min_inputs = 1;
     bool reads = true;
+
+    /// The options every tool has (help, version, -i, -o, -v, -q, and the output encoding for
+    /// tools that write clouds), bound to `io`.
+    po::options_description common_options(Streams& io) const;
+    /// The usage text --help prints.
+    void print_help(const po::options_description& all) const;
+    /// The preset first, then every option given on the command line (a defaulted one does not
+    /// override the preset).
+    void apply_bindings(const po::variables_map& vm) const;
+    /// Usage errors of the output options (encoding, container, binary to a terminal).
+    void check_output(const Streams& io) const;
 };
+
+po::options_description Tool::Impl::common_options(Streams& io) const {
+    const bool cloud_out = output == Output::kCloud;
+    po::options_description common("Common options");
+    common.add_options()("help,h", "print this help and exit")("version", "print the version");
+    if (reads) {
+        common.add_options()("input,i", po::value<std::string>(&io.input_)->default_value("-"),
+                             "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)");
+    }
+    common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
+                         cloud_out ? "output cloud ('-' = stdout); a file is written to a "
+                                     "temporary file and renamed, a device or FIFO directly"
+                                   : "output report ('-' = stdout)");
+    if (reads) {
+        common.add_options()(
+            "max-input-bytes",
+            po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
+            "refuse inputs larger than this");
+    }
+    common.add_options()("verbose,v", po::bool_switch(&io.verbose_), "notes and timings on stderr")(
+        "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
+    if (cloud_out) {
+        common.add_options()("format",
+                             po::value<std::string>(&io.encoding_)->default_value("binary"),
+                             "PCD encoding: binary, ascii or compressed (PLY: binary or ascii)")(
+            "to", po::value<std::string>(&io.container_)->default_value("auto"),
+            "output container: pcd, ply, or auto (ply when -o ends in .ply)");
+    }
+    return common;
+}
+
+void Tool::Impl::print_help(const po::options_description& all) const {
+    std::cout << name << " - " << summary << "\n\nUsage: " << name
+              << (inputs  ? " [options] [IN ...] [-o OUT]\n  IN ...: " + inputs_help
+                  : reads ? std::string(" [options] [-i IN] [-o OUT]")
+                          : std::string(" [options] [-o OUT]"))
+              << "\n"
+              << all << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
+              << epilog;
+}
+
+void Tool::Impl::apply_bindings(const po::variables_map& vm) const {
+    if (apply_preset && !preset.empty()) {
+        apply_preset(preset);
+    }
+    for (const Binding& b : bindings) {
+        const auto it = vm.find(b.name);
+        if (it == vm.end() || it->second.defaulted()) {
+            continue;
+        }
+        if (b.is_flag) {
+            if (it->second.as<bool>()) {
+                b.assign("");
+            }
+        } else {
+            b.assign(it->second.as<std::string>());
+        }
+    }
+}
+
+void Tool::Impl::check_output(const Streams& io) const {
+    if (output == Output::kCloud) {
+        if (io.encoding_ != "binary" && io.encoding_ != "ascii" && io.encoding_ != "compressed") {
+            throw InvalidArgument("--format must be binary, ascii or compressed, got '" +
+                                  io.encoding_ + "'");
+        }
+        if (io.container_ != "auto" && io.container_ != "pcd" && io.container_ != "ply") {
+            throw InvalidArgument("--to must be pcd, ply or auto, got '" + io.container_ + "'");
+        }
+        if (io.output_ == "-" && io.encoding_ != "ascii" && ::isatty(1)) {
+            throw InvalidArgument(
+                "refusing to write a binary cloud to a terminal; use -o FILE, "
+                "a pipe, or --format ascii");
+        }
+    }
+}
 
 Tool::Tool(std::string name, std::string summary, Output output) : impl_(std::make_unique<Impl>()) {
     impl_->name = std::move(name);
@@ -433,32 +520,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
     Impl& im = *impl_;
     Streams io;
     io.tool_ = im.name;
-    const bool cloud_out = im.output == Output::kCloud;
-    po::options_description common("Common options");
-    common.add_options()("help,h", "print this help and exit")("version", "print the version");
-    if (im.reads) {
-        common.add_options()("input,i", po::value<std::string>(&io.input_)->default_value("-"),
-                             "input cloud: PCD, PLY or XYZ text, by content ('-' = stdin)");
-    }
-    common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
-                         cloud_out ? "output cloud ('-' = stdout); a file is written to a "
-                                     "temporary file and renamed, a device or FIFO directly"
-                                   : "output report ('-' = stdout)");
-    if (im.reads) {
-        common.add_options()(
-            "max-input-bytes",
-            po::value<std::uint64_t>(&io.max_input_bytes_)->default_value(io.max_input_bytes_),
-            "refuse inputs larger than this");
-    }
-    common.add_options()("verbose,v", po::bool_switch(&io.verbose_), "notes and timings on stderr")(
-        "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
-    if (cloud_out) {
-        common.add_options()("format",
-                             po::value<std::string>(&io.encoding_)->default_value("binary"),
-                             "PCD encoding: binary, ascii or compressed (PLY: binary or ascii)")(
-            "to", po::value<std::string>(&io.container_)->default_value("auto"),
-            "output container: pcd, ply, or auto (ply when -o ends in .ply)");
-    }
+    const po::options_description common = im.common_options(io);
     po::options_description all;
     all.add(im.own).add(common);
     po::options_description parse_set;
@@ -478,14 +540,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             po::command_line_parser(argc, argv).options(parse_set).positional(positional).run(),
             vm);
         if (vm.count("help")) {
-            std::cout << im.name << " - " << im.summary << "\n\nUsage: " << im.name
-                      << (im.inputs  ? " [options] [IN ...] [-o OUT]\n  IN ...: " + im.inputs_help
-                          : im.reads ? std::string(" [options] [-i IN] [-o OUT]")
-                                     : std::string(" [options] [-o OUT]"))
-                      << "\n"
-                      << all
-                      << "\nExit status: 0 success, 1 bad data or I/O error, 2 usage error.\n"
-                      << im.epilog;
+            im.print_help(all);
             return kOk;
         }
         if (vm.count("version")) {
@@ -493,37 +548,8 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             return kOk;
         }
         po::notify(vm);
-        if (im.apply_preset && !im.preset.empty()) {
-            im.apply_preset(im.preset);
-        }
-        for (const Binding& b : im.bindings) {
-            const auto it = vm.find(b.name);
-            if (it == vm.end() || it->second.defaulted()) {
-                continue;
-            }
-            if (b.is_flag) {
-                if (it->second.as<bool>()) {
-                    b.assign("");
-                }
-            } else {
-                b.assign(it->second.as<std::string>());
-            }
-        }
-        if (cloud_out) {
-            if (io.encoding_ != "binary" && io.encoding_ != "ascii" &&
-                io.encoding_ != "compressed") {
-                throw InvalidArgument("--format must be binary, ascii or compressed, got '" +
-                                      io.encoding_ + "'");
-            }
-            if (io.container_ != "auto" && io.container_ != "pcd" && io.container_ != "ply") {
-                throw InvalidArgument("--to must be pcd, ply or auto, got '" + io.container_ + "'");
-            }
-            if (io.output_ == "-" && io.encoding_ != "ascii" && ::isatty(1)) {
-                throw InvalidArgument(
-                    "refusing to write a binary cloud to a terminal; use -o FILE, "
-                    "a pipe, or --format ascii");
-            }
-        }
+        im.apply_bindings(vm);
+        im.check_output(io);
         if (im.inputs != nullptr &&
             (!vm["input"].defaulted() || im.inputs->size() < im.min_inputs)) {
             im.inputs->insert(im.inputs->begin(), io.input_);  // -i, or stdin by default
