@@ -5,17 +5,15 @@
 #include <fstream>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
 #include <pc/evaluation/instances.h>
+#include <pc/evaluation/score_report.h>
 #include <pc/evaluation/truth.h>
 #include <pc/io/points.h>
 #include <pc/pipeline/presets.h>
 
 namespace ev = pc::evaluation;
-using nlohmann::ordered_json;
 
 namespace {
 
@@ -33,8 +31,6 @@ ev::Truth read_truth(const std::string& path) {
         throw pc::IoError(path + ": " + e.what());
     }
 }
-
-std::string num(double v) { return std::isfinite(v) ? pc::format_number(v) : ""; }
 
 }  // namespace
 
@@ -113,58 +109,9 @@ int main(int argc, char** argv) {
         } else {
             s = ev::score_by_centroid(pc::io::xyz(blob), predicted, truth.fruits, gt_count, params);
         }
-        const std::string row = name.empty() ? input : name;
-        const std::size_t fp = s.count - s.true_positives, missed = s.gt_count - s.true_positives;
-        std::ostringstream out;
-        if (csv) {
-            out << "name,match,count,gt_count,recovery,true_positives,false_positives,missed,"
-                   "precision,recall,f1,"
-                   "merged,split\n"
-                << row << ',' << mode << ',' << s.count << ',' << s.gt_count << ','
-                << num(s.recovery) << ',' << s.true_positives << ',' << fp << ',' << missed << ','
-                << num(s.precision) << ',' << num(s.recall) << ',' << num(s.f1) << ','
-                << s.merged.size() << ',' << s.split.size() << '\n';
-        } else if (markdown) {
-            char buf[256];
-            std::snprintf(buf, sizeof buf,
-                          "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n",
-                          row.c_str(), s.count, s.gt_count, s.recovery, s.precision, s.recall, s.f1,
-                          s.merged.size(), s.split.size());
-            out << "| Cloud | Count | GT | Recovery | Precision | Recall | F1 | Merged | Split |\n"
-                << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
-                << buf;
-        } else {
-            ordered_json j;
-            j["name"] = row;
-            j["input"] = input;
-            j["match"] = mode;
-            j["count"] = s.count;
-            j["gt_count"] = s.gt_count;
-            j["recovery"] =
-                std::isfinite(s.recovery) ? ordered_json(s.recovery) : ordered_json(nullptr);
-            j["true_positives"] = s.true_positives;
-            j["false_positives"] = fp;
-            j["missed"] = missed;
-            j["precision"] = s.precision;
-            j["recall"] = s.recall;
-            j["f1"] = s.f1;
-            j["merged"] = s.merged.size();
-            j["split"] = s.split.size();
-            j["merged_labels"] = s.merged;
-            j["split_fruit"] = s.split;
-            ordered_json m = ordered_json::array();
-            for (const auto& x : s.matches) {
-                m.push_back(mode == "overlap" ? ordered_json{{"label", x.label},
-                                                             {"fruit", x.fruit},
-                                                             {"points", x.overlap},
-                                                             {"iou", x.iou}}
-                                              : ordered_json{{"label", x.label},
-                                                             {"fruit", x.fruit},
-                                                             {"distance", x.overlap}});
-            }
-            j["matches"] = m;
-            out << j.dump(1) << '\n';
-        }
-        io.write_text(out.str());
+        io.write_text(ev::score_report(s, name.empty() ? input : name, input, mode,
+                                       csv        ? ev::ScoreFormat::kCsv
+                                       : markdown ? ev::ScoreFormat::kMarkdown
+                                                  : ev::ScoreFormat::kJson));
     });
 }
