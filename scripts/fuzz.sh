@@ -11,19 +11,8 @@ cd "$(dirname "$0")/.."
 limit=(-runs="${1:-200000}" -seed=1)
 if [ "${1:-}" = "--time" ]; then limit=(-max_total_time="${2:?seconds}"); fi
 
-packages=(clang-14 libclang-rt-14-dev libomp-14-dev)
-missing=()
-for p in "${packages[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-    echo "fuzz: installing ${missing[*]}" >&2
-    sudo_cmd=()
-    if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-    export DEBIAN_FRONTEND=noninteractive
-    "${sudo_cmd[@]}" apt-get update -qq
-    "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
-fi
+source scripts/lib_packages.sh
+install_missing fuzz clang-14 libclang-rt-14-dev libomp-14-dev
 
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
     -DPC_FUZZ=ON -DPC_BUILD_TESTS=OFF >/dev/null

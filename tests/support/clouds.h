@@ -2,8 +2,11 @@
 // Typed clouds with known structure for the algorithm tests.
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include <pc/core/cloud.h>
 
@@ -74,6 +77,24 @@ inline pcl::PointXYZ nan_point() {
 inline double dist2(const pcl::PointXYZ& a, const pcl::PointXYZ& b) {
     const double dx = double{a.x} - b.x, dy = double{a.y} - b.y, dz = double{a.z} - b.z;
     return dx * dx + dy * dy + dz * dz;
+}
+
+/// The points of `c` as records of `stride` bytes with x y z at byte `offset`; every other byte
+/// holds a pattern of the point's index, so that a record moved in part would show.
+inline std::vector<std::uint8_t> records_of(const Cloud& c,
+                                            std::size_t stride,
+                                            std::uint32_t offset = 0) {
+    std::vector<std::uint8_t> bytes(c.size() * stride);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        std::uint8_t* r = &bytes[i * stride];
+        for (std::size_t b = 0; b < stride; ++b) {
+            r[b] = static_cast<std::uint8_t>(i * 131 + b * 7 + (i >> 8));
+        }
+        std::memcpy(r + offset, &c[i].x, 4);
+        std::memcpy(r + offset + 4, &c[i].y, 4);
+        std::memcpy(r + offset + 8, &c[i].z, 4);
+    }
+    return bytes;
 }
 
 }  // namespace pc::test

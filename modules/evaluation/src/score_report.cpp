@@ -1,5 +1,3 @@
-#include <pc/evaluation/score_report.h>
-
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -7,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
+#include <pc/evaluation/score_report.h>
 
 namespace pc::evaluation {
 
@@ -29,16 +28,16 @@ std::string score_report(const InstanceScores& s,
         out << "name,match,count,gt_count,recovery,true_positives,false_positives,missed,"
                "precision,recall,f1,"
                "merged,split\n"
-            << name << ',' << mode << ',' << s.count << ',' << s.gt_count << ','
-            << num(s.recovery) << ',' << s.true_positives << ',' << fp << ',' << missed << ','
-            << num(s.precision) << ',' << num(s.recall) << ',' << num(s.f1) << ','
-            << s.merged.size() << ',' << s.split.size() << '\n';
+            << name << ',' << mode << ',' << s.count << ',' << s.gt_count << ',' << num(s.recovery)
+            << ',' << s.true_positives << ',' << fp << ',' << missed << ',' << num(s.precision)
+            << ',' << num(s.recall) << ',' << num(s.f1) << ',' << s.merged.size() << ','
+            << s.split.size() << '\n';
     } else if (format == ScoreFormat::kMarkdown) {
         char buf[256];
         std::snprintf(buf, sizeof buf,
-                      "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n",
-                      name.c_str(), s.count, s.gt_count, s.recovery, s.precision, s.recall, s.f1,
-                      s.merged.size(), s.split.size());
+                      "| %s | %zu | %zu | %.3f | %.3f | %.3f | %.3f | %zu | %zu |\n", name.c_str(),
+                      s.count, s.gt_count, s.recovery, s.precision, s.recall, s.f1, s.merged.size(),
+                      s.split.size());
         out << "| Cloud | Count | GT | Recovery | Precision | Recall | F1 | Merged | Split |\n"
             << "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"
             << buf;
@@ -63,13 +62,13 @@ std::string score_report(const InstanceScores& s,
         j["split_fruit"] = s.split;
         ordered_json m = ordered_json::array();
         for (const auto& x : s.matches) {
-            m.push_back(mode == "overlap" ? ordered_json{{"label", x.label},
-                                                         {"fruit", x.fruit},
-                                                         {"points", x.overlap},
-                                                         {"iou", x.iou}}
-                                          : ordered_json{{"label", x.label},
-                                                         {"fruit", x.fruit},
-                                                         {"distance", x.overlap}});
+            m.push_back(mode == "overlap"
+                            ? ordered_json{{"label", x.label},
+                                           {"fruit", x.fruit},
+                                           {"points", x.overlap},
+                                           {"iou", x.iou}}
+                            : ordered_json{
+                                  {"label", x.label}, {"fruit", x.fruit}, {"distance", x.overlap}});
         }
         j["matches"] = m;
         out << j.dump(1) << '\n';

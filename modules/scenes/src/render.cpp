@@ -6,6 +6,7 @@
 #include <unordered_set>
 
 #include <pc/core/error.h>
+#include <pc/core/names.h>
 #include <pc/core/random.h>
 #include <pc/scenes/render.h>
 
@@ -304,30 +305,16 @@ void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
 
 }  // namespace
 
-Mode parse_mode(const std::string& text) {
-    if (text == "explicit") {
-        return Mode::kExplicit;
-    }
-    if (text == "implicit") {
-        return Mode::kImplicit;
-    }
-    if (text == "degraded") {
-        return Mode::kDegraded;
-    }
-    throw InvalidArgument("--mode must be explicit, implicit or degraded, got '" + text + "'");
-}
+namespace {
 
-std::string mode_name(Mode mode) {
-    switch (mode) {
-        case Mode::kExplicit:
-            return "explicit";
-        case Mode::kImplicit:
-            return "implicit";
-        case Mode::kDegraded:
-            return "degraded";
-    }
-    return "?";
-}
+constexpr std::pair<std::string_view, Mode> kModes[] = {
+    {"explicit", Mode::kExplicit}, {"implicit", Mode::kImplicit}, {"degraded", Mode::kDegraded}};
+
+}  // namespace
+
+Mode parse_mode(const std::string& text) { return parse_name<Mode>(kModes, text, "--mode"); }
+
+std::string mode_name(Mode mode) { return name_of<Mode>(kModes, mode); }
 
 void RenderParams::validate() const {
     require(voxel >= 1e-5 && voxel <= 1.0, "voxel must be in [1e-5, 1]");

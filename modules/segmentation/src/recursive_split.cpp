@@ -4,6 +4,7 @@
 #include <limits>
 
 #include <pc/core/error.h>
+#include <pc/core/names.h>
 #include <pc/core/stats.h>
 #include <pc/segmentation/core_split.h>
 #include <pc/segmentation/kmeans.h>
@@ -33,30 +34,18 @@ double aabb_volume(const XyzView& cloud, const std::vector<std::uint32_t>& membe
 
 }  // namespace
 
+namespace {
+
+constexpr std::pair<std::string_view, SplitRule> kRules[] = {
+    {"paper", SplitRule::kPaper}, {"script", SplitRule::kScript}, {"cores", SplitRule::kCores}};
+
+}  // namespace
+
 SplitRule parse_split_rule(const std::string& text) {
-    if (text == "paper") {
-        return SplitRule::kPaper;
-    }
-    if (text == "script") {
-        return SplitRule::kScript;
-    }
-    if (text == "cores") {
-        return SplitRule::kCores;
-    }
-    throw InvalidArgument("--rule: expected paper, script or cores, got '" + text + "'");
+    return parse_name<SplitRule>(kRules, text, "--rule");
 }
 
-std::string split_rule_name(SplitRule rule) {
-    switch (rule) {
-        case SplitRule::kPaper:
-            return "paper";
-        case SplitRule::kScript:
-            return "script";
-        case SplitRule::kCores:
-            return "cores";
-    }
-    return "?";
-}
+std::string split_rule_name(SplitRule rule) { return name_of<SplitRule>(kRules, rule); }
 
 void RecursiveSplitParams::validate() const {
     if (!(size_factor >= 0) || !(volume_factor >= 0)) {

@@ -14,27 +14,13 @@
 namespace pc {
 namespace {
 
-/// The points of `c` as records of `stride` bytes, x y z at 0, the rest filled with a pattern
-/// that names the point (so that a record split or mixed with another shows).
-std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride) {
-    std::vector<std::uint8_t> bytes(c.size() * stride);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        std::uint8_t* r = &bytes[i * stride];
-        for (std::size_t b = 12; b < stride; ++b) {
-            r[b] = static_cast<std::uint8_t>(i * 31 + b);
-        }
-        std::memcpy(r, &c[i].x, 12);
-    }
-    return bytes;
-}
-
 TEST(RadixSort, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
     const Cloud c = test::uniform(70000, 1.0f, 35);
     std::vector<std::uint32_t> to(c.size());
     std::iota(to.begin(), to.end(), 0u);
     std::shuffle(to.begin(), to.end(), std::mt19937(5));
     for (const std::size_t stride : {12u, 16u, 20u, 44u}) {
-        std::vector<std::uint8_t> bytes = records_of(c, stride);
+        std::vector<std::uint8_t> bytes = test::records_of(c, stride);
         const std::vector<std::uint8_t> original = bytes;
         std::vector<std::uint32_t> places = to;
         XyzRecords records{bytes.data(), stride, c.size(), 0};
@@ -53,7 +39,7 @@ TEST(RadixSort, PermuteRecordsMovesWholeRecordsToTheirPlaces) {
         ASSERT_EQ(values[to[i]], i);
     }
     EXPECT_THROW(permute_records(values.data(), 6, places), std::logic_error);
-    std::vector<std::uint8_t> bytes = records_of(c, 16);
+    std::vector<std::uint8_t> bytes = test::records_of(c, 16);
     std::vector<std::uint32_t> short_places(c.size() - 1);
     XyzRecords too_many{bytes.data(), 16, c.size(), 0};
     EXPECT_THROW(permute_records(too_many, short_places), std::logic_error);

@@ -24,8 +24,8 @@ InstanceScores scores() {
 }
 
 TEST(ScoreReport, JsonCountsFalsePositivesAndMissedFruit) {
-    const auto j =
-        nlohmann::json::parse(score_report(scores(), "tree", "tree.pcd", "overlap", ScoreFormat::kJson));
+    const auto j = nlohmann::json::parse(
+        score_report(scores(), "tree", "tree.pcd", "overlap", ScoreFormat::kJson));
     EXPECT_EQ(j["name"], "tree");
     EXPECT_EQ(j["false_positives"], 1);  // 4 predictions - 3 matched
     EXPECT_EQ(j["missed"], 2);           // 5 fruit - 3 matched
@@ -40,9 +40,10 @@ TEST(ScoreReport, JsonCountsFalsePositivesAndMissedFruit) {
 }
 
 TEST(ScoreReport, CsvAndMarkdownAreOneRowUnderTheirHeader) {
-    EXPECT_EQ(score_report(scores(), "tree", "tree.pcd", "overlap", ScoreFormat::kCsv),
-              "name,match,count,gt_count,recovery,true_positives,false_positives,missed,precision,"
-              "recall,f1,merged,split\ntree,overlap,4,5,0.8,3,1,2,0.75,0.6,0.6666666666666666,1,0\n");
+    EXPECT_EQ(
+        score_report(scores(), "tree", "tree.pcd", "overlap", ScoreFormat::kCsv),
+        "name,match,count,gt_count,recovery,true_positives,false_positives,missed,precision,"
+        "recall,f1,merged,split\ntree,overlap,4,5,0.8,3,1,2,0.75,0.6,0.6666666666666666,1,0\n");
     EXPECT_EQ(score_report(scores(), "tree", "tree.pcd", "overlap", ScoreFormat::kMarkdown),
               "| Cloud | Count | GT | Recovery | Precision | Recall | F1 | Merged | Split |\n"
               "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n"

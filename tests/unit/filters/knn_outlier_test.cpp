@@ -57,10 +57,7 @@ TEST(KnnOutlier, RichRecordsGiveTheScoresOfThinOnesAndAreLeftInPlace) {
     c.push_back(test::nan_point());
     const auto ref = brute_scores(c, 5);
     for (const std::size_t stride : {12u, 24u}) {
-        std::vector<std::uint8_t> bytes(c.size() * stride, 0xAB);
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            std::memcpy(&bytes[i * stride], &c[i].x, 12);
-        }
+        std::vector<std::uint8_t> bytes = test::records_of(c, stride);
         const std::vector<std::uint8_t> original = bytes;
         XyzRecords records{bytes.data(), stride, c.size(), 0};
         const auto r = knn_outlier(records, {.k = 5});

@@ -299,22 +299,6 @@ TEST(Grid, AllKnnMatchesBruteForceAcrossDensities) {
     }
 }
 
-/// The points of `c` as records of `stride` bytes with x y z at byte `offset`; every other byte
-/// holds a pattern of the point's index, so that a record moved in part would show.
-std::vector<std::uint8_t> records_of(const Cloud& c, std::size_t stride, std::uint32_t offset) {
-    std::vector<std::uint8_t> bytes(c.size() * stride);
-    for (std::size_t i = 0; i < c.size(); ++i) {
-        std::uint8_t* r = &bytes[i * stride];
-        for (std::size_t b = 0; b < stride; ++b) {
-            r[b] = static_cast<std::uint8_t>(i * 131 + b * 7 + (i >> 8));
-        }
-        std::memcpy(r + offset, &c[i].x, 4);
-        std::memcpy(r + offset + 4, &c[i].y, 4);
-        std::memcpy(r + offset + 8, &c[i].z, 4);
-    }
-    return bytes;
-}
-
 /// Checks an in-place grid over `c` (as records of `stride` bytes, x at `offset`) against the
 /// copying grid: the records are whole and in cell order, the answers are the same, and
 /// the destructor gives back the original bytes.
@@ -323,7 +307,7 @@ void expect_in_place_grid_equals_copy(const Cloud& c,
                                       std::size_t stride,
                                       std::uint32_t offset) {
     SCOPED_TRACE("stride " + std::to_string(stride) + ", cell " + std::to_string(cell));
-    std::vector<std::uint8_t> bytes = records_of(c, stride, offset);
+    std::vector<std::uint8_t> bytes = test::records_of(c, stride, offset);
     const std::vector<std::uint8_t> original = bytes;
     XyzRecords records{bytes.data(), stride, c.size(), offset};
     const Grid copy(c, cell);
@@ -473,7 +457,7 @@ TEST(Grid, InPlaceHandlesNonFinitePointsAndWideKeys) {
 
 TEST(Grid, InPlaceChecksItsRecords) {
     const Cloud c = test::uniform(50, 1.0f, 3);
-    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    std::vector<std::uint8_t> bytes = test::records_of(c, 16, 0);
     XyzRecords odd_stride{bytes.data(), 14, 50, 0};
     XyzRecords odd_offset{bytes.data(), 16, 50, 6};
     EXPECT_THROW(Grid(odd_stride, 0.1), std::logic_error);
@@ -484,7 +468,7 @@ TEST(Grid, InPlacePutsTheRecordsBackWhenUnwinding) {
     // The guard: an exception thrown while the records are in cell order leaves them in their
     // original order.
     const Cloud c = test::uniform(5000, 1.0f, 8);
-    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    std::vector<std::uint8_t> bytes = test::records_of(c, 16, 0);
     const std::vector<std::uint8_t> original = bytes;
     XyzRecords records{bytes.data(), 16, c.size(), 0};
     try {
@@ -499,7 +483,7 @@ TEST(Grid, InPlacePutsTheRecordsBackWhenUnwinding) {
 TEST(Grid, OverThinRecordsSortsInPlaceOverRichOnesCopies) {
     const Cloud c = test::uniform(2000, 1.0f, 9);
     for (const std::size_t stride : {12u, 16u, 20u}) {
-        std::vector<std::uint8_t> bytes = records_of(c, stride, 0);
+        std::vector<std::uint8_t> bytes = test::records_of(c, stride, 0);
         const std::vector<std::uint8_t> original = bytes;
         XyzRecords records{bytes.data(), stride, c.size(), 0};
         {
@@ -550,7 +534,7 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
     Grid partial(with_nan, cell);
     EXPECT_THROW(partial.renumber_by_position(), std::logic_error);
     // Built in place, the records stay in cell order, also after the grid is gone.
-    std::vector<std::uint8_t> bytes = records_of(c, 16, 0);
+    std::vector<std::uint8_t> bytes = test::records_of(c, 16, 0);
     XyzRecords records{bytes.data(), 16, c.size(), 0};
     auto in_place_ptr = std::make_unique<Grid>(records, cell);
     Grid& in_place = *in_place_ptr;
@@ -570,7 +554,7 @@ TEST(Grid, RenumberedByPositionItAnswersForTheCloudInCellOrder) {
     for (std::uint32_t s = 0; s < sorted.size(); s += 7) {
         EXPECT_EQ(records.view()[s].x, sorted[s].x);
     }
-    std::vector<std::uint8_t> nan_bytes = records_of(with_nan, 16, 0);
+    std::vector<std::uint8_t> nan_bytes = test::records_of(with_nan, 16, 0);
     XyzRecords nan_records{nan_bytes.data(), 16, c.size(), 0};
     Grid in_place_nan(nan_records, cell);
     EXPECT_THROW(in_place_nan.renumber_by_position(), std::logic_error);

@@ -119,10 +119,7 @@ TEST(Dbscan, ThinAndRichRecordsGiveTheSameResultAndAreLeftInPlace) {
     const DbscanResult want = dbscan(c, p);
     expect_same_partition(want, brute_dbscan(c, p.eps, p.min_points));
     for (const std::size_t stride : {12u, 20u}) {
-        std::vector<std::uint8_t> bytes(c.size() * stride, 0x5A);
-        for (std::size_t i = 0; i < c.size(); ++i) {
-            std::memcpy(&bytes[i * stride], &c[i].x, 12);
-        }
+        std::vector<std::uint8_t> bytes = test::records_of(c, stride);
         const std::vector<std::uint8_t> original = bytes;
         XyzRecords records{bytes.data(), stride, c.size(), 0};
         const DbscanResult got = dbscan(records, p);
