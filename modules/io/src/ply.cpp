@@ -350,6 +350,118 @@ void fill_rgb_from_dc(const VertexLayout& v, Blob& blob) {
 
 }  // namespace
 
+namespace {
+
+/// The body of a binary PLY: the vertex rows into `out` (point_step bytes each), other elements
+/// skipped; every byte of the body must belong to an element.
+void read_binary_body(const Header& h,
+                      const Element& ve,
+                      const VertexLayout& v,
+                      std::string_view bytes,
+                      std::uint8_t* out,
+                      bool swap) {
+    const std::uint64_t n = ve.count;
+    std::size_t pos = h.body_offset;
+    const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+    for (const Element& e : h.elements) {
+        if (&e != &ve) {
+            pos = skip_binary(e, bytes, pos, swap);
+            continue;
+        }
+        for (std::uint64_t i = 0; i < n; ++i) {
+            std::uint8_t* dst = out + i * v.point_step;
+            for (std::size_t k = 0; k < e.props.size(); ++k) {
+                const std::size_t s = type_size(e.props[k].type);
+                const Target& t = v.targets[k];
+                if (t.colour_byte >= 0) {
+                    dst[t.dst_offset + t.colour_byte] = data[pos];
+                } else {
+                    copy_value(dst + t.dst_offset, data + pos, s, swap);
+                }
+                pos += s;
+            }
+        }
+    }
+    if (pos != bytes.size()) {
+        throw IoError(std::to_string(bytes.size() - pos) +
+                      " B after the last PLY element: the element counts do not match the "
+                      "body (vertex count " +
+                      std::to_string(n) + ")");
+    }
+}
+
+/// The body of an ASCII PLY: one line a row, the vertex rows parsed into `out`, other elements
+/// skipped; nothing but blank lines after the last element.
+void read_ascii_body(const Header& h,
+                     const Element& ve,
+                     const VertexLayout& v,
+                     std::string_view bytes,
+                     std::uint8_t* out) {
+    const std::uint64_t n = ve.count;
+    detail::LineCursor cur{bytes, h.body_offset, h.end_line};
+    std::string_view line;
+    const auto next_row = [&](const Element& e, std::uint64_t row) {
+        while (cur.next(line)) {
+            detail::Tokens toks{line};
+            std::string_view tok;
+            if (toks.next(tok)) {
+                return;
+            }
+        }
+        throw IoError("truncated PLY body: element '" + e.name + "' has " + std::to_string(row) +
+                      " rows, header declares " + std::to_string(e.count));
+    };
+    for (const Element& e : h.elements) {
+        for (std::uint64_t row = 0; row < e.count; ++row) {
+            next_row(e, row);
+            if (&e != &ve) {
+                continue;  // faces and other elements are skipped
+            }
+            detail::Tokens toks{line};
+            std::string_view tok;
+            std::uint8_t* dst = out + row * v.point_step;
+            std::size_t k = 0;
+            for (; toks.next(tok); ++k) {
+                if (k == e.props.size()) {
+                    break;
+                }
+                const Property& p = e.props[k];
+                const Target& t = v.targets[k];
+                std::uint8_t tmp[8];
+                std::uint8_t* target = t.colour_byte >= 0 ? tmp : dst + t.dst_offset;
+                if (!detail::parse_value(tok, p.type, target)) {
+                    throw IoError("line " + std::to_string(cur.line_number) + ": " + quote(tok) +
+                                  " is not a valid " + ply_type_name(p.type) + " for property '" +
+                                  p.name + "'");
+                }
+                if (t.colour_byte >= 0) {
+                    dst[t.dst_offset + t.colour_byte] = tmp[0];
+                }
+            }
+            if (k != e.props.size()) {
+                std::size_t found = k;
+                while (toks.next(tok)) {
+                    ++found;
+                }
+                throw IoError("line " + std::to_string(cur.line_number) + ": expected " +
+                              std::to_string(e.props.size()) + " values, found " +
+                              std::to_string(found + (k == e.props.size() ? 1 : 0)));
+            }
+        }
+    }
+    while (cur.next(line)) {
+        detail::Tokens toks{line};
+        std::string_view tok;
+        if (toks.next(tok)) {
+            throw IoError("line " + std::to_string(cur.line_number) +
+                          ": extra data after the last PLY element (vertex count " +
+                          std::to_string(n) + ")");
+        }
+    }
+}
+
+}  // namespace
+
 ReadResult parse_ply(std::string_view bytes) {
     ReadResult r;
     const Header h = parse_header(bytes);
@@ -386,96 +498,10 @@ ReadResult parse_ply(std::string_view bytes) {
 
     if (binary) {
         r.format = swap ? "ply binary_big_endian" : "ply binary_little_endian";
-        std::size_t pos = h.body_offset;
-        const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
-        for (const Element& e : h.elements) {
-            if (&e != &ve) {
-                pos = skip_binary(e, bytes, pos, swap);
-                continue;
-            }
-            for (std::uint64_t i = 0; i < n; ++i) {
-                std::uint8_t* dst = out + i * v.point_step;
-                for (std::size_t k = 0; k < e.props.size(); ++k) {
-                    const std::size_t s = type_size(e.props[k].type);
-                    const Target& t = v.targets[k];
-                    if (t.colour_byte >= 0) {
-                        dst[t.dst_offset + t.colour_byte] = data[pos];
-                    } else {
-                        copy_value(dst + t.dst_offset, data + pos, s, swap);
-                    }
-                    pos += s;
-                }
-            }
-        }
-        if (pos != bytes.size()) {
-            throw IoError(std::to_string(bytes.size() - pos) +
-                          " B after the last PLY element: the element counts do not match the "
-                          "body (vertex count " +
-                          std::to_string(n) + ")");
-        }
+        read_binary_body(h, ve, v, bytes, out, swap);
     } else {
         r.format = "ply ascii";
-        detail::LineCursor cur{bytes, h.body_offset, h.end_line};
-        std::string_view line;
-        const auto next_row = [&](const Element& e, std::uint64_t row) {
-            while (cur.next(line)) {
-                detail::Tokens toks{line};
-                std::string_view tok;
-                if (toks.next(tok)) {
-                    return;
-                }
-            }
-            throw IoError("truncated PLY body: element '" + e.name + "' has " +
-                          std::to_string(row) + " rows, header declares " +
-                          std::to_string(e.count));
-        };
-        for (const Element& e : h.elements) {
-            for (std::uint64_t row = 0; row < e.count; ++row) {
-                next_row(e, row);
-                if (&e != &ve) {
-                    continue;  // faces and other elements are skipped
-                }
-                detail::Tokens toks{line};
-                std::string_view tok;
-                std::uint8_t* dst = out + row * v.point_step;
-                std::size_t k = 0;
-                for (; toks.next(tok); ++k) {
-                    if (k == e.props.size()) {
-                        break;
-                    }
-                    const Property& p = e.props[k];
-                    const Target& t = v.targets[k];
-                    std::uint8_t tmp[8];
-                    std::uint8_t* target = t.colour_byte >= 0 ? tmp : dst + t.dst_offset;
-                    if (!detail::parse_value(tok, p.type, target)) {
-                        throw IoError("line " + std::to_string(cur.line_number) + ": " +
-                                      quote(tok) + " is not a valid " + ply_type_name(p.type) +
-                                      " for property '" + p.name + "'");
-                    }
-                    if (t.colour_byte >= 0) {
-                        dst[t.dst_offset + t.colour_byte] = tmp[0];
-                    }
-                }
-                if (k != e.props.size()) {
-                    std::size_t found = k;
-                    while (toks.next(tok)) {
-                        ++found;
-                    }
-                    throw IoError("line " + std::to_string(cur.line_number) + ": expected " +
-                                  std::to_string(e.props.size()) + " values, found " +
-                                  std::to_string(found + (k == e.props.size() ? 1 : 0)));
-                }
-            }
-        }
-        while (cur.next(line)) {
-            detail::Tokens toks{line};
-            std::string_view tok;
-            if (toks.next(tok)) {
-                throw IoError("line " + std::to_string(cur.line_number) +
-                              ": extra data after the last PLY element (vertex count " +
-                              std::to_string(n) + ")");
-            }
-        }
+        read_ascii_body(h, ve, v, bytes, out);
     }
     if (v.f_dc) {
         fill_rgb_from_dc(v, blob);
