@@ -63,7 +63,7 @@ protected:
 #endif
         const RunResult r = run_shell(
             "@pc_synth --species apple --voxel 0.0066 --fruit-count 1266 --canopy "
-            "1.9770,1.9770,1.6475 -o '" +
+            "1.9772,1.9772,1.6477 -o '" +
             canopy() + "'");
         ASSERT_EQ(r.code, 0) << r.err;
         // x y z only: the same points, written by hand as a binary PCD of three F 4 fields.

@@ -331,6 +331,172 @@ void RenderParams::validate() const {
     require(outliers >= 0 && outliers <= 100, "outliers must be in [0, 100]");
 }
 
+namespace {
+
+/// The implicit mode's fruit: surface voxels seen by at least min_views of the cameras (leaves
+/// occlude), kept with probability views / 4 and jittered, bridges between close fruit, and
+/// fruit-coloured floaters.
+void render_implicit(const Scene& s,
+                     const RenderParams& p,
+                     const std::vector<std::vector<Voxel>>& fruit,
+                     const std::vector<std::vector<Voxel>>& leaves,
+                     const std::vector<double>& tone,
+                     Rng& rng,
+                     Output& emit) {
+    const double v = p.voxel;
+    std::vector<Vec3> occluders, targets;
+    std::vector<std::uint32_t> owner;
+    for (std::size_t f = 0; f < fruit.size(); ++f) {
+        for (const auto& x : fruit[f]) {
+            if (x.surface) {
+                targets.push_back(centre_of(x, v));
+                owner.push_back(static_cast<std::uint32_t>(f));
+            }
+        }
+    }
+    occluders = targets;
+    for (const auto& l : leaves) {
+        for (const auto& x : l) {
+            occluders.push_back(centre_of(x, v));
+        }
+    }
+    const Cameras cams(s, p);
+    std::vector<std::uint32_t> seen(targets.size(), 0);
+#pragma omp parallel
+    {
+        std::vector<std::uint32_t> mine(targets.size(), 0);
+#pragma omp for schedule(dynamic, 1)
+        for (std::int64_t c = 0; c < static_cast<std::int64_t>(cams.size()); ++c) {
+            cams.count_visible(static_cast<std::size_t>(c), occluders, targets, mine);
+        }
+#pragma omp critical
+        for (std::size_t n = 0; n < seen.size(); ++n) {
+            seen[n] += mine[n];  // integer sums: the same in any order
+        }
+    }
+    const double sigma = p.surface_noise * v;
+    for (std::size_t n = 0; n < targets.size(); ++n) {
+        // Seen from fewer views, NeRF's surface is thinner: keep with probability views / 4.
+        const double keep = seen[n] >= p.min_views ? std::min(1.0, seen[n] / 4.0) : 0.0;
+        const double draw = rng.uniform();
+        Vec3 q = targets[n];
+        for (auto& c : q) {
+            c += sigma * rng.normal();
+        }
+        if (draw < keep) {
+            emit.add(q, emit.shade(s.fruit_rgb, tone[owner[n]]), owner[n] + 1);
+        }
+    }
+    add_bridges(s, p, rng, emit);
+    const auto blobs =
+        static_cast<std::uint64_t>(std::llround(p.floaters * static_cast<double>(s.fruits.size())));
+    for (std::uint64_t b = 0; b < blobs; ++b) {
+        const Vec3 d = rng.direction();
+        const double u = std::cbrt(rng.uniform());
+        const Vec3 c{u * d[0] * s.canopy[0], u * d[1] * s.canopy[1], u * d[2] * s.canopy[2]};
+        const auto n = 5 + rng.below(30);
+        const std::uint32_t rgb = emit.shade(s.fruit_rgb, 0.9);
+        for (std::uint64_t k = 0; k < n; ++k) {
+            emit.add({c[0] + 0.006 * rng.normal(), c[1] + 0.006 * rng.normal(),
+                      c[2] + 0.006 * rng.normal()},
+                     rgb, 0);
+        }
+    }
+}
+
+/// The explicit and degraded modes' fruit: every voxel (explicit), or those the degraded masks
+/// keep for each fruit.
+void render_solid(const Scene& s,
+                  const RenderParams& p,
+                  const std::vector<std::vector<Voxel>>& fruit,
+                  const std::vector<double>& tone,
+                  Rng& rng,
+                  Output& emit) {
+    const double v = p.voxel;
+    for (std::size_t f = 0; f < fruit.size(); ++f) {
+        std::vector<Voxel> kept = fruit[f];
+        if (p.mode == Mode::kDegraded) {
+            // Per-fruit recall uniform in recall ± 0.4; below 0.15 the masks missed the fruit.
+            const double r = std::clamp(p.recall + rng.uniform(-0.4, 0.4), 0.0, 1.0);
+            kept = r < 0.15 ? std::vector<Voxel>{} : degrade(s.fruits[f], fruit[f], r, v, rng);
+        }
+        for (const auto& x : kept) {
+            emit.add(centre_of(x, v), emit.shade(s.fruit_rgb, tone[f]),
+                     static_cast<std::uint32_t>(f + 1));
+        }
+    }
+}
+
+/// Clutter: leaked leaves, dark ground and bright sparse outliers, in proportion to the
+/// `fruit_total` fruit points.
+void add_clutter(const Scene& s,
+                 const RenderParams& p,
+                 const std::vector<std::vector<Voxel>>& leaves,
+                 std::size_t fruit_total,
+                 Rng& rng,
+                 Output& emit) {
+    const double v = p.voxel;
+    const double jitter = p.mode == Mode::kImplicit ? p.surface_noise * v : 0.0;
+    for (const auto& l : leaves) {
+        if (rng.uniform() >= p.leaf_leak) {
+            continue;
+        }
+        for (const auto& x : l) {
+            Vec3 q = centre_of(x, v);
+            for (auto& c : q) {
+                c += jitter * rng.normal();
+            }
+            emit.add(q, emit.shade(kLeafRgb), 0);
+        }
+    }
+    const double ground = 1.5 * std::max(s.canopy[0], s.canopy[1]);
+    const auto n_ground =
+        static_cast<std::uint64_t>(std::llround(p.background * static_cast<double>(fruit_total)));
+    for (std::uint64_t k = 0; k < n_ground; ++k) {
+        const double rho = ground * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
+        const double grey = rng.uniform(10, 70);
+        emit.add(
+            {rho * std::cos(phi), rho * std::sin(phi), -s.canopy[2] - 0.3 + 0.01 * rng.normal()},
+            pack(grey, grey * rng.uniform(0.9, 1.1), grey * rng.uniform(0.9, 1.1)), 0);
+    }
+    const auto n_out =
+        static_cast<std::uint64_t>(std::llround(p.outliers * static_cast<double>(fruit_total)));
+    for (std::uint64_t k = 0; k < n_out; ++k) {
+        emit.add({1.2 * s.canopy[0] * rng.uniform(-1, 1), 1.2 * s.canopy[1] * rng.uniform(-1, 1),
+                  1.2 * s.canopy[2] * rng.uniform(-1, 1)},
+                 pack(rng.uniform(150, 255), rng.uniform(150, 255), rng.uniform(150, 255)), 0);
+    }
+}
+
+/// `out` in a fixed shuffle, so that nothing downstream can lean on the generation order, with
+/// the points of each of the `fruits` counted.
+Rendered shuffled_points(const Rendered& out, std::size_t fruits, Rng& rng) {
+    const std::size_t n = out.xyz.size();
+    std::vector<std::size_t> perm(n);
+    std::iota(perm.begin(), perm.end(), std::size_t{0});
+    for (std::size_t k = n; k > 1; --k) {
+        std::swap(perm[k - 1], perm[rng.below(k)]);
+    }
+    Rendered shuffled;
+    shuffled.xyz.resize(n);
+    shuffled.rgb.resize(n);
+    shuffled.gt.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+        shuffled.xyz[k] = out.xyz[perm[k]];
+        shuffled.rgb[k] = out.rgb[perm[k]];
+        shuffled.gt[k] = out.gt[perm[k]];
+    }
+    shuffled.fruit_points.assign(fruits, 0);
+    for (auto g : shuffled.gt) {
+        if (g != 0) {
+            ++shuffled.fruit_points[g - 1];
+        }
+    }
+    return shuffled;
+}
+
+}  // namespace
+
 Rendered render(const Scene& s, const RenderParams& p) {
     p.validate();
     const double v = p.voxel;
@@ -363,135 +529,12 @@ Rendered render(const Scene& s, const RenderParams& p) {
         t = rng.uniform(0.95, 1.05);
     }
     if (p.mode == Mode::kImplicit) {
-        std::vector<Vec3> occluders, targets;
-        std::vector<std::uint32_t> owner;
-        for (std::size_t f = 0; f < fruit.size(); ++f) {
-            for (const auto& x : fruit[f]) {
-                if (x.surface) {
-                    targets.push_back(centre_of(x, v));
-                    owner.push_back(static_cast<std::uint32_t>(f));
-                }
-            }
-        }
-        occluders = targets;
-        for (const auto& l : leaves) {
-            for (const auto& x : l) {
-                occluders.push_back(centre_of(x, v));
-            }
-        }
-        const Cameras cams(s, p);
-        std::vector<std::uint32_t> seen(targets.size(), 0);
-#pragma omp parallel
-        {
-            std::vector<std::uint32_t> mine(targets.size(), 0);
-#pragma omp for schedule(dynamic, 1)
-            for (std::int64_t c = 0; c < static_cast<std::int64_t>(cams.size()); ++c) {
-                cams.count_visible(static_cast<std::size_t>(c), occluders, targets, mine);
-            }
-#pragma omp critical
-            for (std::size_t n = 0; n < seen.size(); ++n) {
-                seen[n] += mine[n];  // integer sums: the same in any order
-            }
-        }
-        const double sigma = p.surface_noise * v;
-        for (std::size_t n = 0; n < targets.size(); ++n) {
-            // Seen from fewer views, NeRF's surface is thinner: keep with probability views / 4.
-            const double keep = seen[n] >= p.min_views ? std::min(1.0, seen[n] / 4.0) : 0.0;
-            const double draw = rng.uniform();
-            Vec3 q = targets[n];
-            for (auto& c : q) {
-                c += sigma * rng.normal();
-            }
-            if (draw < keep) {
-                emit.add(q, emit.shade(s.fruit_rgb, tone[owner[n]]), owner[n] + 1);
-            }
-        }
-        add_bridges(s, p, rng, emit);
-        const auto blobs = static_cast<std::uint64_t>(
-            std::llround(p.floaters * static_cast<double>(s.fruits.size())));
-        for (std::uint64_t b = 0; b < blobs; ++b) {
-            const Vec3 d = rng.direction();
-            const double u = std::cbrt(rng.uniform());
-            const Vec3 c{u * d[0] * s.canopy[0], u * d[1] * s.canopy[1], u * d[2] * s.canopy[2]};
-            const auto n = 5 + rng.below(30);
-            const std::uint32_t rgb = emit.shade(s.fruit_rgb, 0.9);
-            for (std::uint64_t k = 0; k < n; ++k) {
-                emit.add({c[0] + 0.006 * rng.normal(), c[1] + 0.006 * rng.normal(),
-                          c[2] + 0.006 * rng.normal()},
-                         rgb, 0);
-            }
-        }
+        render_implicit(s, p, fruit, leaves, tone, rng, emit);
     } else {
-        for (std::size_t f = 0; f < fruit.size(); ++f) {
-            std::vector<Voxel> kept = fruit[f];
-            if (p.mode == Mode::kDegraded) {
-                // Per-fruit recall uniform in recall ± 0.4; below 0.15 the masks missed the fruit.
-                const double r = std::clamp(p.recall + rng.uniform(-0.4, 0.4), 0.0, 1.0);
-                kept = r < 0.15 ? std::vector<Voxel>{} : degrade(s.fruits[f], fruit[f], r, v, rng);
-            }
-            for (const auto& x : kept) {
-                emit.add(centre_of(x, v), emit.shade(s.fruit_rgb, tone[f]),
-                         static_cast<std::uint32_t>(f + 1));
-            }
-        }
+        render_solid(s, p, fruit, tone, rng, emit);
     }
-    const std::size_t fruit_total = out.xyz.size();
-
-    // Clutter: leaked leaves, dark ground, bright sparse outliers.
-    const double jitter = p.mode == Mode::kImplicit ? p.surface_noise * v : 0.0;
-    for (const auto& l : leaves) {
-        if (rng.uniform() >= p.leaf_leak) {
-            continue;
-        }
-        for (const auto& x : l) {
-            Vec3 q = centre_of(x, v);
-            for (auto& c : q) {
-                c += jitter * rng.normal();
-            }
-            emit.add(q, emit.shade(kLeafRgb), 0);
-        }
-    }
-    const double ground = 1.5 * std::max(s.canopy[0], s.canopy[1]);
-    const auto n_ground =
-        static_cast<std::uint64_t>(std::llround(p.background * static_cast<double>(fruit_total)));
-    for (std::uint64_t k = 0; k < n_ground; ++k) {
-        const double rho = ground * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
-        const double grey = rng.uniform(10, 70);
-        emit.add(
-            {rho * std::cos(phi), rho * std::sin(phi), -s.canopy[2] - 0.3 + 0.01 * rng.normal()},
-            pack(grey, grey * rng.uniform(0.9, 1.1), grey * rng.uniform(0.9, 1.1)), 0);
-    }
-    const auto n_out =
-        static_cast<std::uint64_t>(std::llround(p.outliers * static_cast<double>(fruit_total)));
-    for (std::uint64_t k = 0; k < n_out; ++k) {
-        emit.add({1.2 * s.canopy[0] * rng.uniform(-1, 1), 1.2 * s.canopy[1] * rng.uniform(-1, 1),
-                  1.2 * s.canopy[2] * rng.uniform(-1, 1)},
-                 pack(rng.uniform(150, 255), rng.uniform(150, 255), rng.uniform(150, 255)), 0);
-    }
-
-    // A fixed shuffle, so that nothing downstream can lean on the generation order.
-    const std::size_t n = out.xyz.size();
-    std::vector<std::size_t> perm(n);
-    std::iota(perm.begin(), perm.end(), std::size_t{0});
-    for (std::size_t k = n; k > 1; --k) {
-        std::swap(perm[k - 1], perm[rng.below(k)]);
-    }
-    Rendered shuffled;
-    shuffled.xyz.resize(n);
-    shuffled.rgb.resize(n);
-    shuffled.gt.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        shuffled.xyz[k] = out.xyz[perm[k]];
-        shuffled.rgb[k] = out.rgb[perm[k]];
-        shuffled.gt[k] = out.gt[perm[k]];
-    }
-    shuffled.fruit_points.assign(s.fruits.size(), 0);
-    for (auto g : shuffled.gt) {
-        if (g != 0) {
-            ++shuffled.fruit_points[g - 1];
-        }
-    }
-    return shuffled;
+    add_clutter(s, p, leaves, out.xyz.size(), rng, emit);
+    return shuffled_points(out, s.fruits.size(), rng);
 }
 
 io::Blob to_blob(const Rendered& r) {
