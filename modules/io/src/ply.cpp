@@ -120,7 +120,7 @@ Header parse_header(std::string_view bytes) {
             }
             have_format = true;
         } else if (t[0] == "element") {
-            std::uint64_t count;
+            std::uint64_t count = 0;
             if (t.size() != 3 || !detail::parse_u64(t[2], count)) {
                 fail("element line must be 'element <name> <non-negative count>'");
             }

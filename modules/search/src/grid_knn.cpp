@@ -126,6 +126,65 @@ struct KnnScratch {
     std::vector<Segment> block, ring2;  // the 3x3x3 block; the cells at Chebyshev distance 2
 };
 
+/// The segment of `cell` at cell coordinates `at` seen from the cell at `centre`.
+Segment make_segment(std::uint32_t cell, const std::int64_t at[3], const std::int64_t centre[3]) {
+    Segment seg{
+        cell,
+        {static_cast<std::int8_t>(at[0] - centre[0]), static_cast<std::int8_t>(at[1] - centre[1]),
+         static_cast<std::int8_t>(at[2] - centre[2])},
+        0};
+    seg.rank =
+        static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
+    return seg;
+}
+
+/// For point p in the cell whose lower corner is `lo`: gap[a][d + 2], the squared distance from p
+/// to the cells at offset d along axis a (faces moved `slack` closer: a point's cell is found
+/// with rounding); returns the distance to the nearest face of its own cell.
+double point_gaps(const float* p, const double lo[3], double cell, double slack, double gap[3][5]) {
+    double margin = cell;
+    for (int a = 0; a < 3; ++a) {
+        const double below = std::max(0.0, double{p[a]} - lo[a] - slack);
+        const double above = std::max(0.0, lo[a] + cell - p[a] - slack);
+        gap[a][0] = (below + cell) * (below + cell);
+        gap[a][1] = below * below;
+        gap[a][2] = 0;
+        gap[a][3] = above * above;
+        gap[a][4] = (above + cell) * (above + cell);
+        margin = std::min({margin, below, above});
+    }
+    return margin;
+}
+
+/// Offers the points of `cells` to sorted position s's k nearest (w.idx, w.d2), skipping cells
+/// that lie wholly farther than the current k-th.
+void scan_cells(const Grid& g,
+                std::uint32_t s,
+                const std::vector<Segment>& cells,
+                const double gap[3][5],
+                std::size_t k,
+                KnnScratch& w) {
+    const double px = g.point(s)[0], py = g.point(s)[1], pz = g.point(s)[2];
+    const std::size_t stride = g.point_stride();
+    double worst = w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
+    for (const Segment& seg : cells) {
+        if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] > worst) {
+            continue;  // every point of that cell is farther than the k-th
+        }
+        const float* q = g.point(g.cell_begin(seg.cell));
+        for (std::uint32_t t = g.cell_begin(seg.cell); t < g.cell_end(seg.cell); ++t, q += stride) {
+            const double ex = px - q[0], ey = py - q[1], ez = pz - q[2];
+            const double dd = ex * ex + ey * ey + ez * ez;
+            if (dd <= worst && t != s) {
+                insert_candidate(g.index_of(t), dd, k, w.idx, w.d2);
+                if (w.idx.size() == k) {
+                    worst = w.d2.back();
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 void Grid::all_knn(
@@ -138,17 +197,6 @@ void Grid::all_knn(
     const double slack = 1e-6 * cell_;
     std::vector<std::uint32_t> far_points;  // left for the k-d tree
     std::mutex far_mutex;
-    const auto segment = [](std::uint32_t cell, const std::int64_t at[3],
-                            const std::int64_t centre[3]) {
-        Segment seg{cell,
-                    {static_cast<std::int8_t>(at[0] - centre[0]),
-                     static_cast<std::int8_t>(at[1] - centre[1]),
-                     static_cast<std::int8_t>(at[2] - centre[2])},
-                    0};
-        seg.rank =
-            static_cast<std::uint8_t>(std::abs(seg.d[0]) + std::abs(seg.d[1]) + std::abs(seg.d[2]));
-        return seg;
-    };
     sweep_cells([&](std::uint32_t c, const std::vector<std::uint32_t>& nb) {
         thread_local KnnScratch scratch;
         KnnScratch& w = scratch;
@@ -164,7 +212,7 @@ void Grid::all_knn(
         for (std::uint32_t nc : nb) {
             std::int64_t at[3];
             unpack(cells_[nc].key(), at);
-            w.block.push_back(segment(nc, at, xyz));
+            w.block.push_back(make_segment(nc, at, xyz));
         }
         std::stable_sort(w.block.begin(), w.block.end(),
                          [](const Segment& a, const Segment& b) { return a.rank < b.rank; });
@@ -172,41 +220,10 @@ void Grid::all_knn(
         for (std::uint32_t s = cells_[c].begin; s < cells_[c].end(); ++s) {
             w.idx.clear();
             w.d2.clear();
-            // gap[a][d + 2]: squared distance from the point to the cells at offset d along axis a.
             double gap[3][5];
-            double margin = cell_;  // to the nearest face of its own cell
-            for (int a = 0; a < 3; ++a) {
-                const double below = std::max(0.0, double{point(s)[a]} - lo[a] - slack);
-                const double above = std::max(0.0, lo[a] + cell_ - point(s)[a] - slack);
-                gap[a][0] = (below + cell_) * (below + cell_);
-                gap[a][1] = below * below;
-                gap[a][2] = 0;
-                gap[a][3] = above * above;
-                gap[a][4] = (above + cell_) * (above + cell_);
-                margin = std::min({margin, below, above});
-            }
-            const double px = point(s)[0], py = point(s)[1], pz = point(s)[2];
+            const double margin = point_gaps(point(s), lo, cell_, slack, gap);
             const auto scan = [&](const std::vector<Segment>& cells) {
-                double worst =
-                    w.idx.size() == k ? w.d2.back() : std::numeric_limits<double>::infinity();
-                for (const Segment& seg : cells) {
-                    if (gap[0][seg.d[0] + 2] + gap[1][seg.d[1] + 2] + gap[2][seg.d[2] + 2] >
-                        worst) {
-                        continue;  // every point of that cell is farther than the k-th
-                    }
-                    const float* q = point(cells_[seg.cell].begin);
-                    for (std::uint32_t t = cells_[seg.cell].begin; t < cells_[seg.cell].end();
-                         ++t, q += stride_) {
-                        const double ex = px - q[0], ey = py - q[1], ez = pz - q[2];
-                        const double dd = ex * ex + ey * ey + ez * ez;
-                        if (dd <= worst && t != s) {
-                            insert_candidate(index_of(t), dd, k, w.idx, w.d2);
-                            if (w.idx.size() == k) {
-                                worst = w.d2.back();
-                            }
-                        }
-                    }
-                }
+                scan_cells(*this, s, cells, gap, k, w);
             };
             // The 3x3x3 block covers every point closer than one cell plus the distance to the
             // nearest face of the point's own cell; the 5x5x5 block one cell more.
@@ -228,7 +245,7 @@ void Grid::all_knn(
                                 unpack(cell->key(), at);
                                 if (!inner_row ||
                                     std::abs(at[2] - xyz[2]) == 2) {  // not in the block
-                                    w.ring2.push_back(segment(
+                                    w.ring2.push_back(make_segment(
                                         static_cast<std::uint32_t>(cell - cells_.data()), at, xyz));
                                 }
                             }

@@ -82,6 +82,103 @@ using Word = std::uint32_t __attribute__((may_alias));
 
 namespace detail {
 
+/// Swaps two records of `words` 4-byte words (kWords when fixed at compile time, else 0).
+template <std::size_t kWords>
+inline void swap_words(Word* a, Word* b, std::size_t words) {
+    for (std::size_t w = 0; w < (kWords != 0 ? kWords : words); ++w) {
+        const std::uint32_t t = a[w];
+        a[w] = b[w];
+        b[w] = t;
+    }
+}
+
+/// dest[i]: where the record at lo + i of a bucket of m (>= 2) goes. Distinct keys spanning m
+/// values (untagged: original indices) are placed directly; other keys (repeated cell keys may
+/// span m values too) by an LSD radix sort of their positions over the key bits that vary.
+template <class Key, bool kTagged>
+void leaf_destinations(const Key* keys,
+                       std::size_t lo,
+                       std::size_t m,
+                       std::vector<std::uint32_t>& dest) {
+    thread_local std::vector<std::uint32_t> pos, pos2;
+    const std::size_t hi = lo + m;
+    dest.resize(m);
+    Key kmin = keys[lo], kmax = keys[lo], varying = 0;
+    for (std::size_t i = lo; i < hi; ++i) {
+        kmin = std::min(kmin, keys[i]);
+        kmax = std::max(kmax, keys[i]);
+        varying |= keys[i] ^ keys[lo];
+    }
+    if (!kTagged && kmax - kmin == m - 1) {
+        for (std::size_t i = 0; i < m; ++i) {
+            dest[i] = static_cast<std::uint32_t>(keys[lo + i] - kmin);
+        }
+    } else {
+        pos.resize(m);
+        pos2.resize(m);
+        for (std::size_t i = 0; i < m; ++i) {
+            pos[i] = static_cast<std::uint32_t>(i);
+        }
+        for (int shift = 0; shift < static_cast<int>(std::bit_width(varying)); shift += 8) {
+            std::array<std::uint32_t, 257> count{};
+            for (std::size_t i = 0; i < m; ++i) {
+                ++count[((keys[lo + i] >> shift) & 0xff) + 1];
+            }
+            for (std::size_t d = 1; d < 257; ++d) {
+                count[d] += count[d - 1];
+            }
+            for (std::size_t i = 0; i < m; ++i) {
+                const std::uint32_t p = pos[i];
+                pos2[count[(keys[lo + p] >> shift) & 0xff]++] = p;
+            }
+            pos.swap(pos2);
+        }
+        for (std::size_t i = 0; i < m; ++i) {
+            dest[pos[i]] = static_cast<std::uint32_t>(i);
+        }
+    }
+}
+
+/// Moves the records lo .. lo + dest.size() - 1 (with their keys and tags) to lo + dest[i],
+/// walking each cycle of the permutation once; dest is left as the identity.
+template <class Key, std::size_t kWords, bool kTagged>
+void apply_cycles(std::uint8_t* rec,
+                  std::size_t step,
+                  Key* keys,
+                  std::uint32_t* tags,
+                  std::size_t lo,
+                  std::vector<std::uint32_t>& dest) {
+    const std::size_t words = kWords != 0 ? kWords : step / sizeof(Word);
+    const std::size_t m = dest.size();
+    // Each cycle of the permutation walked once: the record in hand goes to its place and
+    // the one there is taken up; dest[j] = j marks a place done.
+    std::array<std::uint32_t, 64> held{};  // step is at most 256 here
+    for (std::size_t i = 0; i < m; ++i) {
+        if (dest[i] == i) {
+            continue;
+        }
+        const Word* from = reinterpret_cast<const Word*>(rec + (lo + i) * step);
+        std::copy(from, from + words, held.begin());
+        Key held_key = keys[lo + i];
+        std::uint32_t held_tag = kTagged ? tags[lo + i] : 0;
+        std::size_t j = dest[i];
+        dest[i] = static_cast<std::uint32_t>(i);
+        while (true) {
+            swap_words<kWords>(reinterpret_cast<Word*>(rec + (lo + j) * step), held.data(), words);
+            std::swap(held_key, keys[lo + j]);
+            if constexpr (kTagged) {
+                std::swap(held_tag, tags[lo + j]);
+            }
+            if (j == i) {
+                break;
+            }
+            const std::size_t k = dest[j];
+            dest[j] = static_cast<std::uint32_t>(j);
+            j = k;
+        }
+    }
+}
+
 /// Sorts n records of `step` bytes (a multiple of 4) at `rec` in place by keys[i], carrying keys
 /// and, when kTagged, tags along. Untagged, the keys must be distinct (the records' original
 /// indices: putting them back). Not stable. American flag sort (in-place MSD radix, 8 bits a
@@ -94,16 +191,9 @@ template <class Key, std::size_t kWords, bool kTagged>
 void flag_sort_impl(
     std::uint8_t* rec, std::size_t step, Key* keys, std::uint32_t* tags, std::size_t n) {
     const std::size_t words = kWords != 0 ? kWords : step / sizeof(Word);
-    const auto swap_words = [&](Word* a, Word* b) {
-        for (std::size_t w = 0; w < words; ++w) {
-            const std::uint32_t t = a[w];
-            a[w] = b[w];
-            b[w] = t;
-        }
-    };
     const auto swap = [&](std::size_t i, std::size_t j) {
-        swap_words(reinterpret_cast<Word*>(rec + i * step),
-                   reinterpret_cast<Word*>(rec + j * step));
+        swap_words<kWords>(reinterpret_cast<Word*>(rec + i * step),
+                           reinterpret_cast<Word*>(rec + j * step), words);
         std::swap(keys[i], keys[j]);
         if constexpr (kTagged) {
             std::swap(tags[i], tags[j]);
@@ -113,76 +203,13 @@ void flag_sort_impl(
     // is sorted aside, then permuted.
     constexpr std::size_t kLeaf = 16384;
     const auto leaf = [&](std::size_t lo, std::size_t hi) {
-        // dest[i]: where the record at lo + i goes. Distinct keys spanning m values (untagged:
-        // original indices) are placed directly; other keys (repeated cell keys may span m
-        // values too) by an LSD radix sort of their positions over the key bits that vary.
-        thread_local std::vector<std::uint32_t> dest, pos, pos2;
-        const std::size_t m = hi - lo;
-        if (m < 2) {
+        thread_local std::vector<std::uint32_t> dest;
+        if (hi - lo < 2) {
             return;  // nothing to move (and keys[lo] may be past the end)
         }
-        dest.resize(m);
-        Key kmin = keys[lo], kmax = keys[lo], varying = 0;
-        for (std::size_t i = lo; i < hi; ++i) {
-            kmin = std::min(kmin, keys[i]);
-            kmax = std::max(kmax, keys[i]);
-            varying |= keys[i] ^ keys[lo];
-        }
-        if (!kTagged && kmax - kmin == m - 1) {
-            for (std::size_t i = 0; i < m; ++i) {
-                dest[i] = static_cast<std::uint32_t>(keys[lo + i] - kmin);
-            }
-        } else {
-            pos.resize(m);
-            pos2.resize(m);
-            for (std::size_t i = 0; i < m; ++i) {
-                pos[i] = static_cast<std::uint32_t>(i);
-            }
-            for (int shift = 0; shift < static_cast<int>(std::bit_width(varying)); shift += 8) {
-                std::array<std::uint32_t, 257> count{};
-                for (std::size_t i = 0; i < m; ++i) {
-                    ++count[((keys[lo + i] >> shift) & 0xff) + 1];
-                }
-                for (std::size_t d = 1; d < 257; ++d) {
-                    count[d] += count[d - 1];
-                }
-                for (std::size_t i = 0; i < m; ++i) {
-                    const std::uint32_t p = pos[i];
-                    pos2[count[(keys[lo + p] >> shift) & 0xff]++] = p;
-                }
-                pos.swap(pos2);
-            }
-            for (std::size_t i = 0; i < m; ++i) {
-                dest[pos[i]] = static_cast<std::uint32_t>(i);
-            }
-        }
-        // Each cycle of the permutation walked once: the record in hand goes to its place and
-        // the one there is taken up; dest[j] = j marks a place done.
-        std::array<std::uint32_t, 64> held{};  // step is at most 256 here
-        for (std::size_t i = 0; i < m; ++i) {
-            if (dest[i] == i) {
-                continue;
-            }
-            const Word* from = reinterpret_cast<const Word*>(rec + (lo + i) * step);
-            std::copy(from, from + words, held.begin());
-            Key held_key = keys[lo + i];
-            std::uint32_t held_tag = kTagged ? tags[lo + i] : 0;
-            std::size_t j = dest[i];
-            dest[i] = static_cast<std::uint32_t>(i);
-            while (true) {
-                swap_words(reinterpret_cast<Word*>(rec + (lo + j) * step), held.data());
-                std::swap(held_key, keys[lo + j]);
-                if constexpr (kTagged) {
-                    std::swap(held_tag, tags[lo + j]);
-                }
-                if (j == i) {
-                    break;
-                }
-                const std::size_t k = dest[j];
-                dest[j] = static_cast<std::uint32_t>(j);
-                j = k;
-            }
-        }
+        dest.resize(hi - lo);
+        leaf_destinations<Key, kTagged>(keys, lo, hi - lo, dest);
+        apply_cycles<Key, kWords, kTagged>(rec, step, keys, tags, lo, dest);
     };
     // The digit of key k at `shift`: bits shift .. shift + 7 (a negative shift: the lowest bits,
     // moved up).
