@@ -19,8 +19,13 @@ int main(int argc, char** argv) {
                  [&](const std::string& name) { min_points = pl::preset(name).count_min_points; });
     tool.epilog("\nAn empty cloud counts 0. See docs/tools/pc_count.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        const auto summary = pl::summarize(io.read(), min_points);
+        const pc::io::Blob labelled = io.read();
+        const auto summary = pl::summarize(labelled, min_points);
+        const auto warnings = pl::count_warnings(summary, labelled.size());
+        for (const auto& w : warnings) {
+            io.warn(w);
+        }
         io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
-                            : pl::count_report(summary, gt));
+                            : pl::count_report(summary, gt, {}, warnings));
     });
 }

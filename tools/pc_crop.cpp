@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pl::Step s = pl::apply_crop(io.read(), p);
         io.note(s.note);
+        for (const auto& w : s.warnings) {
+            io.warn(w);
+        }
         io.write(s.blob);
     });
 }

@@ -104,13 +104,22 @@ int main(int argc, char** argv) {
         if (chain.voxel) {
             chain.voxel = voxel;
         }
+        pc::io::Blob in = io.read();
+        const std::size_t points = in.size();
         const pl::ChainResult r =
-            pl::run_chain(io.read(), chain, [&](const std::string& n) { io.note(n); });
+            pl::run_chain(std::move(in), chain, [&](const std::string& n) { io.note(n); });
         const auto summary = pl::summarize(r.labelled, chain.count_min_points);
+        std::vector<std::string> warnings = r.warnings;
+        for (const auto& w : pl::count_warnings(summary, points)) {
+            warnings.push_back(w);
+        }
+        for (const auto& w : warnings) {
+            io.warn(w);
+        }
         if (!cloud_out.empty()) {
             pc::cli::write_cloud_file(cloud_out, r.labelled);
         }
         io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
-                            : pl::count_report(summary, gt));
+                            : pl::count_report(summary, gt, r.steps, warnings));
     });
 }

@@ -22,6 +22,9 @@ int main(int argc, char** argv) {
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pl::Step s = pl::apply_knn_outlier(io.read(), p, out);
         io.note(s.note);
+        for (const auto& w : s.warnings) {
+            io.warn(w);
+        }
         io.write(s.blob);
     });
 }

@@ -1,4 +1,7 @@
 // The counting chain through real pipes, and pc_fruitcount against it.
+#include <cmath>
+#include <string>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -185,6 +188,40 @@ TEST(Chain, DensePresetCountsTheSameAfterScalingAndRotating) {
             EXPECT_EQ(r.out, base.out) << name << " " << t;
         }
     }
+}
+
+TEST(Chain, DarkFruitCountedZeroIsAWarningInTheReportAndOnStderr) {
+    // A dark red ball (mean RGB 0.21): the default colour rule (mean RGB > 0.5) drops every
+    // point. The count of 0 stands, with exit 0, but never silently.
+    std::string cloud =
+        pcd_header("x y z rgb", "4 4 4 4", "F F F U", "1 1 1 1", "2000", "2000", "ascii");
+    for (int i = 0; i < 2000; ++i) {
+        const double phi = 2.399963 * i;  // a golden-angle spiral over the sphere
+        const double z = 1 - 2 * (i + 0.5) / 2000.0, rho = std::sqrt(1 - z * z);
+        cloud += std::to_string(0.03 * rho * std::cos(phi)) + " " +
+                 std::to_string(0.03 * rho * std::sin(phi)) + " " + std::to_string(0.03 * z) + " " +
+                 std::to_string((120 << 16) | (20 << 8) | 20) + "\n";
+    }
+    const RunResult r = run_shell("@pc_fruitcount", cloud);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["count"], 0);
+    ASSERT_GE(j["warnings"].size(), 2u) << r.out;
+    EXPECT_NE(j["warnings"][0].get<std::string>().find("color_filter kept 0 of 2000 points"),
+              std::string::npos);
+    EXPECT_NE(j["warnings"].back().get<std::string>().find("no cluster counted"),
+              std::string::npos);
+    EXPECT_EQ(j["steps"][0]["step"], "color_filter");
+    EXPECT_EQ(j["steps"][0]["points_in"], 2000);
+    EXPECT_EQ(j["steps"][0]["points_out"], 0);
+    EXPECT_NE(r.err.find("pc_fruitcount: warning: color_filter kept 0 of 2000 points"),
+              std::string::npos)
+        << r.err;
+    // Without the colour step the ball is one fruit, and nothing is doubtful.
+    const RunResult no_color = run_shell("@pc_fruitcount --no-color", cloud);
+    ASSERT_EQ(no_color.code, 0) << no_color.err;
+    EXPECT_EQ(nlohmann::json::parse(no_color.out)["count"], 1);
+    EXPECT_TRUE(nlohmann::json::parse(no_color.out)["warnings"].empty()) << no_color.out;
 }
 
 }  // namespace

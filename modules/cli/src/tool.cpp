@@ -228,6 +228,12 @@ void Streams::note(const std::string& message) const {
     }
 }
 
+void Streams::warn(const std::string& message) const {
+    if (!quiet_) {
+        std::cerr << tool_ << ": warning: " << message << std::endl;
+    }
+}
+
 void Streams::write_bytes(const std::function<void(io::ByteSink&)>& producer) {
     if (written_) {
         throw Error("internal: a tool wrote its output twice");

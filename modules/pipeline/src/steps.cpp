@@ -18,6 +18,47 @@ std::string kept_note(const char* step, std::size_t kept, std::size_t total) {
            " points";
 }
 
+/// The colour rule in words, for a warning.
+std::string describe(const filters::ColorFilterParams& p) {
+    std::vector<std::string> rules;
+    const auto interval = [](const filters::Interval& i) {
+        return format_number(i.lo) + ".." + format_number(i.hi);
+    };
+    if (p.min_mean) {
+        rules.push_back("mean RGB > " + format_number(*p.min_mean));
+    }
+    if (p.min_value) {
+        rules.push_back("max RGB > " + format_number(*p.min_value));
+    }
+    if (p.hue_deg) {
+        rules.push_back("hue " + interval(*p.hue_deg) + " deg");
+    }
+    if (p.saturation) {
+        rules.push_back("saturation " + interval(*p.saturation));
+    }
+    if (p.value) {
+        rules.push_back("value " + interval(*p.value));
+    }
+    std::string text = p.invert ? "not " : "";
+    for (std::size_t k = 0; k < rules.size(); ++k) {
+        text += (k ? " and " : "") + rules[k];
+    }
+    return rules.empty() ? "no rule" : text;
+}
+
+/// A step's record and, when it removed more than 95 % of a non-empty cloud's points, a warning
+/// that says so and what to try (`hint`).
+Step finish_step(
+    io::Blob out, std::string note, const char* name, std::size_t in, const std::string& hint) {
+    Step s{std::move(out), std::move(note), name, in, 0, {}};
+    s.points_out = s.blob.size();
+    if (in > 0 && static_cast<double>(s.points_out) < 0.05 * static_cast<double>(in)) {
+        s.warnings.push_back(std::string(name) + " kept " + std::to_string(s.points_out) + " of " +
+                             std::to_string(in) + " points" + (hint.empty() ? "" : ": " + hint));
+    }
+    return s;
+}
+
 }  // namespace
 
 Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
@@ -25,22 +66,29 @@ Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
     // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
     const auto kept = in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
     std::string note = kept_note("color_filter", kept.size(), in.size());
+    const std::size_t n = in.size();
     io::keep_points(in, kept);
-    return {std::move(in), std::move(note)};
+    return finish_step(std::move(in), std::move(note), "color_filter", n,
+                       "the colour rule (" + describe(p) +
+                           ") keeps bright or mask-coloured fruit and drops dark, red or "
+                           "purple fruit; try --no-color or a hue rule (pc_colorfilter --hue)");
 }
 
 Step apply_crop(io::Blob in, const filters::CropParams& p) {
     const auto kept = filters::crop(io::XyzPoints(in).view(), p).kept;
     std::string note = kept_note("crop", kept.size(), in.size());
+    const std::size_t n = in.size();
     io::keep_points(in, kept);
-    return {std::move(in), std::move(note)};
+    return finish_step(std::move(in), std::move(note), "crop", n,
+                       "is the box in the cloud's units and frame?");
 }
 
 Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
     const filters::VoxelResult v = filters::voxel_downsample(io::XyzPoints(in).view(), p);
-    return {io::aggregate(in, v.voxel, v.count), "voxel: " + std::to_string(in.size()) +
-                                                     " points into " + std::to_string(v.count) +
-                                                     " voxels of " + format_number(p.leaf)};
+    return finish_step(io::aggregate(in, v.voxel, v.count),
+                       "voxel: " + std::to_string(in.size()) + " points into " +
+                           std::to_string(v.count) + " voxels of " + format_number(p.leaf),
+                       "voxel", in.size(), "is the leaf size in the cloud's units?");
 }
 
 Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const KnnOutput& o) {
@@ -55,10 +103,11 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
     if (!o.mark_field.empty()) {
         const std::vector<std::uint32_t> mark(r.outlier.begin(), r.outlier.end());
         io::set_field(in, o.mark_field, mark);
-        return {std::move(in), note};
+        return finish_step(std::move(in), note, "knn_outlier", r.outlier.size(), "");
     }
+    const std::size_t n = in.size();
     io::keep_flagged(in, r.outlier, o.invert);  // the outliers when inverted, else the inliers
-    return {std::move(in), note};
+    return finish_step(std::move(in), note, "knn_outlier", n, "");
 }
 
 Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps) {
@@ -82,7 +131,15 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
             " noise points (eps " + format_number(p.eps) + ", min_points " +
             std::to_string(p.min_points) + ")";
     io::set_field(in, "label", r.labels);
-    return {std::move(in), note};
+    Step step{std::move(in), note, "dbscan", r.labels.size(), r.labels.size() - noise, {}};
+    if (noise > 0.95 * static_cast<double>(r.labels.size())) {
+        step.warnings.push_back(
+            "dbscan left " + std::to_string(noise) + " of " + std::to_string(r.labels.size()) +
+            " points as noise (eps " + format_number(p.eps) + ", min_points " +
+            std::to_string(p.min_points) +
+            "): eps is small for this cloud's point spacing; try --eps spacing");
+    }
+    return step;
 }
 
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
@@ -98,8 +155,22 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                   ")"
             : "splits (thresholds: points > " + format_number(r.size_threshold) +
                   ", AABB volume > " + format_number(r.volume_threshold) + ")";
-    return {std::move(in), "recursive_split: " + std::to_string(r.splits) + " " + how + ", " +
-                               std::to_string(r.cluster_count) + " clusters"};
+    const std::size_t n = in.size();
+    Step step{std::move(in),
+              "recursive_split: " + std::to_string(r.splits) + " " + how + ", " +
+                  std::to_string(r.cluster_count) + " clusters",
+              "recursive_split",
+              n,
+              n,
+              {}};
+    if (p.rule == segmentation::SplitRule::kCores && r.cluster_count > 0 && !(r.fruit_radius > 0) &&
+        !(r.hollow_radius > 0)) {
+        step.warnings.push_back("recursive_split could not estimate the fruit radius (spacing " +
+                                format_number(r.spacing) +
+                                "): no cluster was cut; if DBSCAN shattered the fruit, try a "
+                                "larger --eps, or --preset paper-dense");
+    }
+    return step;
 }
 
 ChainResult run_chain(io::Blob in,
@@ -109,6 +180,8 @@ ChainResult run_chain(io::Blob in,
     io::Blob cur = std::move(in);
     const auto take = [&](Step s) {
         cur = std::move(s.blob);
+        out.steps.push_back({s.name, s.points_in, s.points_out});
+        out.warnings.insert(out.warnings.end(), s.warnings.begin(), s.warnings.end());
         if (progress) {
             progress(s.note);
         }
@@ -141,7 +214,19 @@ segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min
     return segmentation::summarize_clusters(io::XyzPoints(labelled).view(), labels, min_points);
 }
 
-std::string count_report(const segmentation::ClusterSummary& s, std::optional<double> gt) {
+std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, std::size_t points) {
+    std::vector<std::string> w;
+    if (s.clusters.empty() && points > 0) {
+        w.push_back("no cluster counted in a cloud of " + std::to_string(points) +
+                    " points: see the steps' points in and out");
+    }
+    return w;
+}
+
+std::string count_report(const segmentation::ClusterSummary& s,
+                         std::optional<double> gt,
+                         const std::vector<StepRecord>& steps,
+                         const std::vector<std::string>& warnings) {
     using nlohmann::ordered_json;
     ordered_json j;
     j["count"] = s.clusters.size();
@@ -161,6 +246,15 @@ std::string count_report(const segmentation::ClusterSummary& s, std::optional<do
                       {"aabb", {{"min", c.min}, {"max", c.max}}}});
     }
     j["clusters"] = cl;
+    if (!steps.empty()) {
+        ordered_json st = ordered_json::array();
+        for (const auto& r : steps) {
+            st.push_back(
+                {{"step", r.name}, {"points_in", r.points_in}, {"points_out", r.points_out}});
+        }
+        j["steps"] = st;
+    }
+    j["warnings"] = warnings;
     return j.dump(1) + "\n";
 }
 

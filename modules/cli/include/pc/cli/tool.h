@@ -35,6 +35,9 @@ public:
     void write_text(std::string_view text);
     /// Prints `<tool>: <message>` on stderr when -v was given.
     void note(const std::string& message) const;
+    /// Prints `<tool>: warning: <message>` on stderr unless -q was given: a valid input whose
+    /// result is doubtful (a filter that dropped nearly everything, a count of 0).
+    void warn(const std::string& message) const;
     [[nodiscard]] bool verbose() const { return verbose_; }
     [[nodiscard]] const std::string& input_name() const { return input_name_; }
     /// The format the last read() recognised ("pcd binary", "ply ascii", ...).

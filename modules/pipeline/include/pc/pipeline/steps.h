@@ -3,6 +3,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <pc/io/blob.h>
 #include <pc/pipeline/presets.h>
@@ -16,6 +17,12 @@ namespace pc::pipeline {
 struct Step {
     io::Blob blob;
     std::string note;
+    std::string name;            ///< "color_filter", "crop", "voxel", "knn_outlier", "dbscan", ...
+    std::size_t points_in = 0;   ///< points handed to the step
+    std::size_t points_out = 0;  ///< points it passed on
+    /// What makes the result doubtful (a filter that removed more than 95 % of the points, a
+    /// fruit size that could not be estimated), in words a user can act on.
+    std::vector<std::string> warnings;
 };
 
 [[nodiscard]] Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p);
@@ -38,9 +45,16 @@ struct KnnOutput {
 [[nodiscard]] Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.
+/// What one step of a chain did, for the report.
+struct StepRecord {
+    std::string name;
+    std::size_t points_in = 0, points_out = 0;
+};
 struct ChainResult {
     io::Blob labelled;
-    std::vector<std::string> notes;  ///< one per step
+    std::vector<std::string> notes;     ///< one per step
+    std::vector<StepRecord> steps;      ///< one per step, in order
+    std::vector<std::string> warnings;  ///< the steps' warnings, in order
 };
 /// `in` is taken by value: pass a temporary (or std::move) and it is not copied. `progress`,
 /// when set, receives each step's note as soon as the step is done (pc_fruitcount -v).
@@ -53,10 +67,17 @@ struct ChainResult {
 [[nodiscard]] segmentation::ClusterSummary summarize(const io::Blob& labelled,
                                                      std::size_t min_points);
 
+/// Warnings about a count itself: none counted from a cloud that had points.
+[[nodiscard]] std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s,
+                                                      std::size_t points);
+
 /// The count report of a labelled cloud, as JSON text (pc_count, pc_fruitcount):
 /// count, noise_points, small_clusters, clusters [{id, points, centroid, aabb {min, max}}],
-/// and with `gt`: gt, error (count − gt), recovery (count / gt).
+/// with `gt`: gt, error (count − gt), recovery (count / gt); then `steps` [{step, points_in,
+/// points_out}] when given (a chain), and `warnings` (always, possibly empty).
 [[nodiscard]] std::string count_report(const segmentation::ClusterSummary& s,
-                                       std::optional<double> gt);
+                                       std::optional<double> gt,
+                                       const std::vector<StepRecord>& steps = {},
+                                       const std::vector<std::string>& warnings = {});
 
 }  // namespace pc::pipeline
