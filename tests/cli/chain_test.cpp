@@ -220,8 +220,14 @@ TEST(Chain, DarkFruitCountedZeroIsAWarningInTheReportAndOnStderr) {
     // Without the colour step the ball is one fruit, and nothing is doubtful.
     const RunResult no_color = run_shell("@pc_fruitcount --no-color", cloud);
     ASSERT_EQ(no_color.code, 0) << no_color.err;
-    EXPECT_EQ(nlohmann::json::parse(no_color.out)["count"], 1);
-    EXPECT_TRUE(nlohmann::json::parse(no_color.out)["warnings"].empty()) << no_color.out;
+    const auto one = nlohmann::json::parse(no_color.out);
+    EXPECT_EQ(one["count"], 1);
+    EXPECT_TRUE(one["warnings"].empty()) << no_color.out;
+    EXPECT_EQ(one["cluster_sizes"]["median"], one["clusters"][0]["points"]);
+    EXPECT_EQ(one["cluster_sizes"]["several"], 0);
+    EXPECT_EQ(one["steps"][1]["step"], "dbscan");  // --no-color: knn_outlier, dbscan, split
+    EXPECT_GT(one["steps"][1]["eps"].get<double>(), 0);
+    EXPECT_GT(one["steps"][1]["spacing"].get<double>(), 0);  // dense: eps from the spacing
 }
 
 }  // namespace

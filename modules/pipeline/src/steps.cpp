@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <pc/core/error.h>
+#include <pc/core/stats.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
 #include <pc/pipeline/steps.h>
@@ -50,7 +51,7 @@ std::string describe(const filters::ColorFilterParams& p) {
 /// that says so and what to try (`hint`).
 Step finish_step(
     io::Blob out, std::string note, const char* name, std::size_t in, const std::string& hint) {
-    Step s{std::move(out), std::move(note), name, in, 0, {}};
+    Step s{std::move(out), std::move(note), name, in, 0, {}, {}};
     s.points_out = s.blob.size();
     if (in > 0 && static_cast<double>(s.points_out) < 0.05 * static_cast<double>(in)) {
         s.warnings.push_back(std::string(name) + " kept " + std::to_string(s.points_out) + " of " +
@@ -112,11 +113,13 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
 
 Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps) {
     std::string note;
+    std::vector<std::pair<std::string, double>> values;
     if (eps.mode == EpsRule::Mode::kKnee) {
         p.eps = segmentation::estimate_eps(io::XyzPoints(in).view(), p.min_points);
         note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
     } else if (eps.mode == EpsRule::Mode::kSpacing) {
         const double s = search::median_spacing(io::XyzPoints(in).view());
+        values.emplace_back("spacing", s);
         // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
         p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
         note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) +
@@ -131,7 +134,8 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
             " noise points (eps " + format_number(p.eps) + ", min_points " +
             std::to_string(p.min_points) + ")";
     io::set_field(in, "label", r.labels);
-    Step step{std::move(in), note, "dbscan", r.labels.size(), r.labels.size() - noise, {}};
+    values.emplace_back("eps", p.eps);
+    Step step{std::move(in), note, "dbscan", r.labels.size(), r.labels.size() - noise, values, {}};
     if (noise > 0.95 * static_cast<double>(r.labels.size())) {
         step.warnings.push_back(
             "dbscan left " + std::to_string(noise) + " of " + std::to_string(r.labels.size()) +
@@ -162,7 +166,13 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
               "recursive_split",
               n,
               n,
+              {},
               {}};
+    if (p.rule == segmentation::SplitRule::kCores) {
+        step.values = {{"spacing", r.spacing},
+                       {"fruit_radius", r.fruit_radius},
+                       {"hollow_radius", r.hollow_radius}};
+    }
     if (p.rule == segmentation::SplitRule::kCores && r.cluster_count > 0 && !(r.fruit_radius > 0) &&
         !(r.hollow_radius > 0)) {
         step.warnings.push_back("recursive_split could not estimate the fruit radius (spacing " +
@@ -180,7 +190,7 @@ ChainResult run_chain(io::Blob in,
     io::Blob cur = std::move(in);
     const auto take = [&](Step s) {
         cur = std::move(s.blob);
-        out.steps.push_back({s.name, s.points_in, s.points_out});
+        out.steps.push_back({s.name, s.points_in, s.points_out, s.values});
         out.warnings.insert(out.warnings.end(), s.warnings.begin(), s.warnings.end());
         if (progress) {
             progress(s.note);
@@ -246,11 +256,26 @@ std::string count_report(const segmentation::ClusterSummary& s,
                       {"aabb", {{"min", c.min}, {"max", c.max}}}});
     }
     j["clusters"] = cl;
+    std::vector<double> sizes;
+    for (const auto& c : s.clusters) {
+        sizes.push_back(static_cast<double>(c.points));
+    }
+    const double med = sizes.empty() ? 0.0 : median(sizes);
+    std::size_t several = 0, fragments = 0;
+    for (const auto& c : s.clusters) {
+        several += static_cast<double>(c.points) > 1.75 * med;
+        fragments += static_cast<double>(c.points) < 0.25 * med;
+    }
+    j["cluster_sizes"] = {{"median", med}, {"several", several}, {"fragments", fragments}};
     if (!steps.empty()) {
         ordered_json st = ordered_json::array();
         for (const auto& r : steps) {
-            st.push_back(
-                {{"step", r.name}, {"points_in", r.points_in}, {"points_out", r.points_out}});
+            ordered_json step{
+                {"step", r.name}, {"points_in", r.points_in}, {"points_out", r.points_out}};
+            for (const auto& [key, value] : r.values) {
+                step[key] = value;
+            }
+            st.push_back(step);
         }
         j["steps"] = st;
     }

@@ -3,6 +3,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <pc/io/blob.h>
@@ -20,6 +21,9 @@ struct Step {
     std::string name;            ///< "color_filter", "crop", "voxel", "knn_outlier", "dbscan", ...
     std::size_t points_in = 0;   ///< points handed to the step
     std::size_t points_out = 0;  ///< points it passed on
+    /// The lengths it used, by name (dbscan: eps and the spacing it came from; the cores split:
+    /// spacing, fruit_radius, hollow_radius), for the report.
+    std::vector<std::pair<std::string, double>> values;
     /// What makes the result doubtful (a filter that removed more than 95 % of the points, a
     /// fruit size that could not be estimated), in words a user can act on.
     std::vector<std::string> warnings;
@@ -49,6 +53,7 @@ struct KnnOutput {
 struct StepRecord {
     std::string name;
     std::size_t points_in = 0, points_out = 0;
+    std::vector<std::pair<std::string, double>> values;  ///< as Step::values
 };
 struct ChainResult {
     io::Blob labelled;
@@ -73,8 +78,10 @@ struct ChainResult {
 
 /// The count report of a labelled cloud, as JSON text (pc_count, pc_fruitcount):
 /// count, noise_points, small_clusters, clusters [{id, points, centroid, aabb {min, max}}],
-/// with `gt`: gt, error (count − gt), recovery (count / gt); then `steps` [{step, points_in,
-/// points_out}] when given (a chain), and `warnings` (always, possibly empty).
+/// with `gt`: gt, error (count − gt), recovery (count / gt); `cluster_sizes` {median points,
+/// `several` (clusters over 1.75 x the median: several fruit?), `fragments` (under 0.25 x the
+/// median)}; then `steps` [{step, points_in, points_out, and the step's values}] when given (a
+/// chain), and `warnings` (always, possibly empty).
 [[nodiscard]] std::string count_report(const segmentation::ClusterSummary& s,
                                        std::optional<double> gt,
                                        const std::vector<StepRecord>& steps = {},
