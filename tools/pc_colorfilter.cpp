@@ -2,6 +2,8 @@
 #include <pc/cli/tool.h>
 #include <pc/pipeline/steps.h>
 
+#include "write_step.h"
+
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
@@ -24,11 +26,6 @@ int main(int argc, char** argv) {
     tool.presets(pl::preset_names(), [&](const std::string& name) { p = *pl::preset(name).color; });
     tool.epilog("\nAll rules given must hold. See docs/tools/pc_colorfilter.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pl::Step s = pl::apply_color_filter(io.read(), p);
-        io.note(s.note);
-        for (const auto& w : s.warnings) {
-            io.warn(w);
-        }
-        io.write(s.blob);
+        pc::tools::write_step(io, pl::apply_color_filter(io.read(), p));
     });
 }

@@ -3,6 +3,8 @@
 #include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
+#include "write_step.h"
+
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
@@ -12,19 +14,10 @@ int main(int argc, char** argv) {
     tool.option("max", &p.max, "upper corner x,y,z (included)");
     tool.flag("invert", &p.invert, "keep the points outside the box instead");
     tool.presets(pl::preset_names(), [&](const std::string& name) {
-        const auto c = pl::preset(name).crop;
-        if (!c) {
-            throw pc::InvalidArgument("--preset: " + name + " has no crop step");
-        }
-        p = *c;
+        p = pl::preset_step(name, &pl::ChainParams::crop, "crop");
     });
     tool.epilog("\nNon-finite points are outside the box. See docs/tools/pc_crop.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pl::Step s = pl::apply_crop(io.read(), p);
-        io.note(s.note);
-        for (const auto& w : s.warnings) {
-            io.warn(w);
-        }
-        io.write(s.blob);
+        pc::tools::write_step(io, pl::apply_crop(io.read(), p));
     });
 }

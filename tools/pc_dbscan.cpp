@@ -3,6 +3,8 @@
 #include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
+#include "write_step.h"
+
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
@@ -23,11 +25,6 @@ int main(int argc, char** argv) {
         "\nBorder points join their nearest core point's cluster. Non-finite points are "
         "noise.\nSee docs/tools/pc_dbscan.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pl::Step s = pl::apply_dbscan(io.read(), p, eps);
-        io.note(s.note);
-        for (const auto& w : s.warnings) {
-            io.warn(w);
-        }
-        io.write(s.blob);
+        pc::tools::write_step(io, pl::apply_dbscan(io.read(), p, eps));
     });
 }

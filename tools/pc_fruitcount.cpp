@@ -4,6 +4,8 @@
 #include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
+#include "split_options.h"
+
 namespace pl = pc::pipeline;
 namespace seg = pc::segmentation;
 
@@ -69,24 +71,7 @@ int main(int argc, char** argv) {
         "spacing)");
     tool.option("min-points", &chain.dbscan.min_points,
                 "DBSCAN: core needs this many, itself included");
-    tool.option(
-        "rule", seg::split_rule_name(split.rule),
-        [&](const std::string& s) { split.rule = seg::parse_split_rule(s); },
-        "split: paper, script or cores");
-    tool.option("core-fraction", &split.core_fraction,
-                "split (cores): core depth / estimated fruit radius");
-    tool.option("min-relative-size", &split.min_relative_size,
-                "cores rule: clusters below this x the median cluster size become noise");
-    tool.option("size-factor", &split.size_factor, "split: points > this x median size");
-    tool.option("volume-factor", &split.volume_factor, "split: AABB volume > this x median volume");
-    tool.option("median-min-points", &split.median_min_points,
-                "split (script): size median over clusters with more points");
-    tool.option("size-band", &split.size_band,
-                "split (script): volume median band around the median size");
-    tool.option("min-cluster-size", &split.min_cluster_size,
-                "split: final clusters below this become noise");
-    tool.option("restarts", &split.restarts, "split: k-means++ restarts");
-    tool.option("seed", &split.seed, "split: k-means seed");
+    pc::tools::bind_split_options(tool, split, "split: ");
     tool.flag("no-split", &no_split, "skip the recursive split");
     tool.option("count-min-points", &chain.count_min_points,
                 "count clusters with at least this many points");

@@ -2,6 +2,8 @@
 #include <pc/cli/tool.h>
 #include <pc/pipeline/steps.h>
 
+#include "write_step.h"
+
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
@@ -20,11 +22,6 @@ int main(int argc, char** argv) {
     tool.presets(pl::preset_names(), [&](const std::string& name) { p = *pl::preset(name).knn; });
     tool.epilog("\nNon-finite points are outliers. See docs/tools/pc_knn_outlier.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pl::Step s = pl::apply_knn_outlier(io.read(), p, out);
-        io.note(s.note);
-        for (const auto& w : s.warnings) {
-            io.warn(w);
-        }
-        io.write(s.blob);
+        pc::tools::write_step(io, pl::apply_knn_outlier(io.read(), p, out));
     });
 }

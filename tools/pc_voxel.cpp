@@ -3,6 +3,8 @@
 #include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
+#include "write_step.h"
+
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
@@ -11,21 +13,12 @@ int main(int argc, char** argv) {
                        "one point per occupied voxel: centroid, mean colour, majority labels");
     tool.option("leaf", &p.leaf, "voxel side, cloud units (> 0)");
     tool.presets(pl::preset_names(), [&](const std::string& name) {
-        const auto v = pl::preset(name).voxel;
-        if (!v) {
-            throw pc::InvalidArgument("--preset: " + name + " has no voxel step");
-        }
-        p = *v;
+        p = pl::preset_step(name, &pl::ChainParams::voxel, "voxel");
     });
     tool.epilog(
         "\nGrid origin half a leaf below the minimum, as Open3D's voxel_down_sample.\n"
         "See docs/tools/pc_voxel.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pl::Step s = pl::apply_voxel(io.read(), p);
-        io.note(s.note);
-        for (const auto& w : s.warnings) {
-            io.warn(w);
-        }
-        io.write(s.blob);
+        pc::tools::write_step(io, pl::apply_voxel(io.read(), p));
     });
 }

@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include <pc/core/error.h>
 #include <pc/filters/color_filter.h>
 #include <pc/filters/crop.h>
 #include <pc/filters/knn_outlier.h>
@@ -52,5 +53,19 @@ struct ChainParams {
 ///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,
 ///    script split rule, count clusters with >= 40 points)
 [[nodiscard]] ChainParams preset(std::string_view name);
+
+/// One optional step of preset `name` (`&ChainParams::crop`, `&ChainParams::voxel`), for a
+/// single-step tool's --preset; pc::InvalidArgument "--preset: NAME has no WHAT step" when that
+/// preset leaves the step out.
+template <class P>
+[[nodiscard]] P preset_step(std::string_view name,
+                            std::optional<P> ChainParams::*step,
+                            const std::string& what) {
+    const std::optional<P> p = preset(name).*step;
+    if (!p) {
+        throw InvalidArgument("--preset: " + std::string(name) + " has no " + what + " step");
+    }
+    return *p;
+}
 
 }  // namespace pc::pipeline
