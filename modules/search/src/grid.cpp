@@ -324,7 +324,12 @@ Grid::Grid(XyzRecords& records, double cell)
             order_[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(i);
         }
         flag_sort(records.base, records.stride, keys.data(), order_.data(), n);
-        index_sorted(keys.data(), finite_);
+        try {
+            index_sorted(keys.data(), finite_);
+        } catch (...) {  // no destructor runs for a constructor that throws: put them back here
+            flag_sort<std::uint32_t>(records.base, records.stride, order_.data(), nullptr, n);
+            throw;
+        }
     };
     if (key_bits < 32) {
         sort_records(std::uint32_t{});
@@ -337,7 +342,8 @@ Grid::Grid(XyzRecords& records, double cell)
 
 Grid::~Grid() {
     if (in_place_ && !identity_) {
-        // Back to the original order: each record's original index is its sort key.
+        // Back to the original order: each record's original index is its sort key. (The sort's
+        // scratch is a few hundred KiB a thread; failing to get it here would end the program.)
         flag_sort<std::uint32_t>(sorted_.base, sorted_.stride, order_.data(), nullptr,
                                  order_.size());
     }
