@@ -11,49 +11,32 @@ using Field = pcl::PCLPointField;
 
 namespace {
 bool is_real(std::uint8_t t) { return t == Field::FLOAT32 || t == Field::FLOAT64; }
+/// Writes `v` as a T at `dst` (any alignment).
+template <class T>
+void store(std::uint8_t* dst, double v) {
+    const auto x = static_cast<T>(v);
+    std::memcpy(dst, &x, sizeof x);
+}
+
 /// Writes an integer value (exact in double: all PCD integer types up to 2^53) as `datatype`.
 void store_integer(double v, std::uint8_t datatype, std::uint8_t* dst) {
     switch (datatype) {
-        case Field::INT8: {
-            const auto x = static_cast<std::int8_t>(v);
-            std::memcpy(dst, &x, 1);
-            break;
-        }
-        case Field::UINT8: {
-            const auto x = static_cast<std::uint8_t>(v);
-            std::memcpy(dst, &x, 1);
-            break;
-        }
-        case Field::INT16: {
-            const auto x = static_cast<std::int16_t>(v);
-            std::memcpy(dst, &x, 2);
-            break;
-        }
-        case Field::UINT16: {
-            const auto x = static_cast<std::uint16_t>(v);
-            std::memcpy(dst, &x, 2);
-            break;
-        }
-        case Field::INT32: {
-            const auto x = static_cast<std::int32_t>(v);
-            std::memcpy(dst, &x, 4);
-            break;
-        }
-        case Field::UINT32: {
-            const auto x = static_cast<std::uint32_t>(v);
-            std::memcpy(dst, &x, 4);
-            break;
-        }
-        case Field::INT64: {
-            const auto x = static_cast<std::int64_t>(v);
-            std::memcpy(dst, &x, 8);
-            break;
-        }
-        default: {
-            const auto x = static_cast<std::uint64_t>(v);
-            std::memcpy(dst, &x, 8);
-            break;
-        }
+        case Field::INT8:
+            return store<std::int8_t>(dst, v);
+        case Field::UINT8:
+            return store<std::uint8_t>(dst, v);
+        case Field::INT16:
+            return store<std::int16_t>(dst, v);
+        case Field::UINT16:
+            return store<std::uint16_t>(dst, v);
+        case Field::INT32:
+            return store<std::int32_t>(dst, v);
+        case Field::UINT32:
+            return store<std::uint32_t>(dst, v);
+        case Field::INT64:
+            return store<std::int64_t>(dst, v);
+        default:
+            return store<std::uint64_t>(dst, v);
     }
 }
 

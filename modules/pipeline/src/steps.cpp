@@ -47,14 +47,18 @@ std::string describe(const filters::ColorFilterParams& p) {
     return rules.empty() ? "no rule" : text;
 }
 
-/// A step's record and, when it removed more than 95 % of a non-empty cloud's points, a warning
-/// that says so and what to try (`hint`).
+/// A step that leaves more than this share of the points behind (filtered out, or noise) gets
+/// a warning.
+constexpr double kNearlyAll = 0.95;
+
+/// A step's record and, when it removed more than kNearlyAll of a non-empty cloud's points, a
+/// warning that says so and what to try (`hint`).
 Step finish_step(
     io::Blob out, std::string note, const char* name, std::size_t in, const std::string& hint) {
-    Step s{std::move(out), std::move(note), name, in, 0, {}, {}};
-    s.points_out = s.blob.size();
-    if (in > 0 && static_cast<double>(s.points_out) < 0.05 * static_cast<double>(in)) {
-        s.warnings.push_back(std::string(name) + " kept " + std::to_string(s.points_out) + " of " +
+    const std::size_t kept = out.size();
+    Step s{std::move(out), std::move(note), {name, in, kept, {}}, {}};
+    if (in > 0 && static_cast<double>(in - kept) > kNearlyAll * static_cast<double>(in)) {
+        s.warnings.push_back(std::string(name) + " kept " + std::to_string(kept) + " of " +
                              std::to_string(in) + " points" + (hint.empty() ? "" : ": " + hint));
     }
     return s;
@@ -135,8 +139,9 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
             std::to_string(p.min_points) + ")";
     io::set_field(in, "label", r.labels);
     values.emplace_back("eps", p.eps);
-    Step step{std::move(in), note, "dbscan", r.labels.size(), r.labels.size() - noise, values, {}};
-    if (noise > 0.95 * static_cast<double>(r.labels.size())) {
+    Step step{
+        std::move(in), note, {"dbscan", r.labels.size(), r.labels.size() - noise, values}, {}};
+    if (static_cast<double>(noise) > kNearlyAll * static_cast<double>(r.labels.size())) {
         step.warnings.push_back(
             "dbscan left " + std::to_string(noise) + " of " + std::to_string(r.labels.size()) +
             " points as noise (eps " + format_number(p.eps) + ", min_points " +
@@ -163,22 +168,19 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     Step step{std::move(in),
               "recursive_split: " + std::to_string(r.splits) + " " + how + ", " +
                   std::to_string(r.cluster_count) + " clusters",
-              "recursive_split",
-              n,
-              n,
-              {},
+              {"recursive_split", n, n, {}},
               {}};
     if (p.rule == segmentation::SplitRule::kCores) {
-        step.values = {{"spacing", r.spacing},
-                       {"fruit_radius", r.fruit_radius},
-                       {"hollow_radius", r.hollow_radius}};
-    }
-    if (p.rule == segmentation::SplitRule::kCores && r.cluster_count > 0 && !(r.fruit_radius > 0) &&
-        !(r.hollow_radius > 0)) {
-        step.warnings.push_back("recursive_split could not estimate the fruit radius (spacing " +
-                                format_number(r.spacing) +
-                                "): no cluster was cut; if DBSCAN shattered the fruit, try a "
-                                "larger --eps, or --preset paper-dense");
+        step.record.values = {{"spacing", r.spacing},
+                              {"fruit_radius", r.fruit_radius},
+                              {"hollow_radius", r.hollow_radius}};
+        if (r.cluster_count > 0 && !(r.fruit_radius > 0) && !(r.hollow_radius > 0)) {
+            step.warnings.push_back(
+                "recursive_split could not estimate the fruit radius (spacing " +
+                format_number(r.spacing) +
+                "): no cluster was cut; if DBSCAN shattered the fruit, try a larger --eps, or "
+                "--preset paper-dense");
+        }
     }
     return step;
 }
@@ -190,7 +192,7 @@ ChainResult run_chain(io::Blob in,
     io::Blob cur = std::move(in);
     const auto take = [&](Step s) {
         cur = std::move(s.blob);
-        out.steps.push_back({s.name, s.points_in, s.points_out, s.values});
+        out.steps.push_back(s.record);
         out.warnings.insert(out.warnings.end(), s.warnings.begin(), s.warnings.end());
         if (progress) {
             progress(s.note);

@@ -327,7 +327,7 @@ Grid::Grid(XyzRecords& records, double cell)
         try {
             index_sorted(keys.data(), finite_);
         } catch (...) {  // no destructor runs for a constructor that throws: put them back here
-            flag_sort<std::uint32_t>(records.base, records.stride, order_.data(), nullptr, n);
+            permute_records(sorted_, order_);
             throw;
         }
     };
@@ -342,10 +342,9 @@ Grid::Grid(XyzRecords& records, double cell)
 
 Grid::~Grid() {
     if (in_place_ && !identity_) {
-        // Back to the original order: each record's original index is its sort key. (The sort's
-        // scratch is a few hundred KiB a thread; failing to get it here would end the program.)
-        flag_sort<std::uint32_t>(sorted_.base, sorted_.stride, order_.data(), nullptr,
-                                 order_.size());
+        // Back to the original order: record s goes to place order_[s]. (The sort's scratch is
+        // a few hundred KiB a thread; failing to get it here would end the program.)
+        permute_records(sorted_, order_);
     }
 }
 

@@ -370,8 +370,7 @@ struct Clustered {
     std::uint32_t clusters = 0;
 };
 
-template <class Labels>
-Clustered number_clusters(const XyzView& cloud, const Labels& label) {
+Clustered number_clusters(const XyzView& cloud, std::span<const std::uint32_t> label) {
     const std::size_t n = cloud.size;
     std::uint32_t max_label = 0;
     std::size_t clustered = 0;  // counted first: growing the index would leave 2x behind
@@ -398,21 +397,17 @@ Clustered number_clusters(const XyzView& cloud, const Labels& label) {
     return c;
 }
 
-/// The labels over the whole cloud from each clustered point's `local` label, and the depths
-/// (unless `with_depth` is false: `depth` is freed); parts smaller than the size limits become
-/// noise, the rest are numbered by size.
+/// The labels over the whole cloud from each clustered point's `local` label, and the depths;
+/// parts smaller than the size limits become noise, the rest are numbered by size.
 CoreSplitResult finish(std::size_t n,
                        const Clustered& c,
                        std::vector<std::uint32_t>&& local,
                        std::vector<float>&& depth,
-                       bool with_depth,
                        const CoreSplitParams& params,
                        CoreSplitResult&& r) {
-    if (with_depth) {
-        r.depth.assign(n, 0.0f);
-        for (std::size_t k = 0; k < depth.size(); ++k) {
-            r.depth[c.index[k]] = depth[k];
-        }
+    r.depth.assign(n, 0.0f);
+    for (std::size_t k = 0; k < depth.size(); ++k) {
+        r.depth[c.index[k]] = depth[k];
     }
     std::vector<float>().swap(depth);
     std::vector<std::uint32_t> out(n, 0);
@@ -820,7 +815,7 @@ CoreSplitResult core_split(const XyzView& cloud,
     std::vector<std::uint32_t> local =
         split_clustered(records, cluster.offset, n, c, depth, params, r);
     std::vector<float>().swap(copy);
-    return finish(n, c, std::move(local), std::move(depth), true, params, std::move(r));
+    return finish(n, c, std::move(local), std::move(depth), params, std::move(r));
 }
 
 }  // namespace pc::segmentation

@@ -7,6 +7,7 @@
 #include <pc/core/error.h>
 #include <pc/search/grid.h>
 #include <pc/segmentation/dbscan.h>
+#include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
 
@@ -168,13 +169,12 @@ void find_cores(const search::Grid& grid,
         const std::uint32_t b = grid.cell_begin(c), e = grid.cell_end(c);
         for (std::uint32_t s = b; s < e; ++s) {
             const Near near(grid.point(s), eps2);
-            const std::uint32_t need = min_points;
-            std::uint32_t found = near.count(grid.point(b), stride, e - b, need);
-            for (std::size_t k = 0; k < nb.size() && found < need; ++k) {
+            std::uint32_t found = near.count(grid.point(b), stride, e - b, min_points);
+            for (std::size_t k = 0; k < nb.size() && found < min_points; ++k) {
                 if (nb[k] != c) {
-                    found +=
-                        near.count(grid.point(grid.cell_begin(nb[k])), stride,
-                                   grid.cell_end(nb[k]) - grid.cell_begin(nb[k]), need - found);
+                    found += near.count(grid.point(grid.cell_begin(nb[k])), stride,
+                                        grid.cell_end(nb[k]) - grid.cell_begin(nb[k]),
+                                        min_points - found);
                 }
             }
             core[s] = found >= min_points;
@@ -300,9 +300,9 @@ void point_to_roots(const search::Grid& grid,
 }
 
 /// Step 4 of dbscan(): clusters numbered by decreasing size, ties by smallest original member
-/// index, as labels of the cloud's n points. Each component first gets a compact id, written to
-/// its members' labels: the roots' first (numbered in position order), then every other
-/// member's from its root's.
+/// index, as labels of the cloud's n points. Each component first gets an id, written to its
+/// members' labels: the roots' first (numbered in position order), then every other member's
+/// from its root's; renumber_by_size() orders them.
 DbscanResult number_clusters(const search::Grid& grid,
                              std::size_t n,
                              const std::vector<std::uint8_t>& core,
@@ -310,13 +310,13 @@ DbscanResult number_clusters(const search::Grid& grid,
     const auto& parent = forest.parent;
     const std::size_t m = grid.finite_count();
     DbscanResult r;
-    r.labels.assign(n, kNone);
+    r.labels.assign(n, kNoise);
     r.core.assign(n, 0);
     std::uint32_t components = 0;
     for (std::uint32_t s = 0; s < m; ++s) {
         r.core[grid.index_of(s)] = core[s] != 0;
         if (core[s] && parent[s].load(std::memory_order_relaxed) == s) {
-            r.labels[grid.index_of(s)] = components++;
+            r.labels[grid.index_of(s)] = ++components;
         }
     }
     for (std::uint32_t s = 0; s < m; ++s) {
@@ -325,26 +325,7 @@ DbscanResult number_clusters(const search::Grid& grid,
             r.labels[grid.index_of(s)] = r.labels[grid.index_of(root)];
         }
     }
-    std::vector<std::uint32_t> size(components, 0), first(components, kNone);
-    for (std::uint32_t i = 0; i < n; ++i) {
-        if (const std::uint32_t k = r.labels[i]; k != kNone) {
-            ++size[k];
-            first[k] = std::min(first[k], i);
-        }
-    }
-    std::vector<std::uint32_t> roots(components);
-    std::iota(roots.begin(), roots.end(), 0u);
-    std::sort(roots.begin(), roots.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return size[a] != size[b] ? size[a] > size[b] : first[a] < first[b];
-    });
-    std::vector<std::uint32_t> label_of(components);
-    for (std::uint32_t k = 0; k < components; ++k) {
-        label_of[roots[k]] = k + 1;
-    }
-    for (std::uint32_t& l : r.labels) {
-        l = l == kNone ? kNoise : label_of[l];
-    }
-    r.cluster_count = static_cast<std::uint32_t>(roots.size());
+    r.cluster_count = renumber_by_size(r.labels);
     return r;
 }
 

@@ -15,15 +15,20 @@ namespace pc::pipeline {
 /// One chain step applied to a full cloud: every field it does not touch passes through.
 /// `note` says what the step did, for -v. The steps take the cloud by value and work on it in
 /// place (pass a temporary or std::move): no second copy of the cloud is made.
+/// What a step did, for the report.
+struct StepRecord {
+    std::string name;            ///< "color_filter", "crop", "voxel", "knn_outlier", "dbscan", ...
+    std::size_t points_in = 0;   ///< points handed to the step
+    std::size_t points_out = 0;  ///< points it passed on (dbscan: the points it clustered)
+    /// The lengths it used, by name (dbscan: eps and the spacing it came from; the cores split:
+    /// spacing, fruit_radius, hollow_radius).
+    std::vector<std::pair<std::string, double>> values;
+};
+
 struct Step {
     io::Blob blob;
     std::string note;
-    std::string name;            ///< "color_filter", "crop", "voxel", "knn_outlier", "dbscan", ...
-    std::size_t points_in = 0;   ///< points handed to the step
-    std::size_t points_out = 0;  ///< points it passed on
-    /// The lengths it used, by name (dbscan: eps and the spacing it came from; the cores split:
-    /// spacing, fruit_radius, hollow_radius), for the report.
-    std::vector<std::pair<std::string, double>> values;
+    StepRecord record;
     /// What makes the result doubtful (a filter that removed more than 95 % of the points, a
     /// fruit size that could not be estimated), in words a user can act on.
     std::vector<std::string> warnings;
@@ -49,12 +54,6 @@ struct KnnOutput {
 [[nodiscard]] Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.
-/// What one step of a chain did, for the report.
-struct StepRecord {
-    std::string name;
-    std::size_t points_in = 0, points_out = 0;
-    std::vector<std::pair<std::string, double>> values;  ///< as Step::values
-};
 struct ChainResult {
     io::Blob labelled;
     std::vector<std::string> notes;     ///< one per step
