@@ -34,9 +34,13 @@ std::string truth_json(const std::string& species,
     for (std::size_t f = 0; f < scene.fruits.size(); ++f) {
         const auto& x = scene.fruits[f];
         present += r.fruit_points[f] > 0;
+        sy::Vec3 centre = x.centre;
+        for (int a = 0; a < 3; ++a) {
+            centre[a] = centre[a] * rp.scale + rp.offset[a];
+        }
         fruits.push_back({{"id", f + 1},
-                          {"centre", x.centre},
-                          {"radius", x.radius},
+                          {"centre", centre},
+                          {"radius", x.radius * rp.scale},
                           {"bunch", x.bunch},
                           {"points", r.fruit_points[f]}});
     }
@@ -46,6 +50,9 @@ std::string truth_json(const std::string& species,
     j["mode"] = sy::mode_name(rp.mode);
     j["seed"] = sp.seed;
     j["voxel"] = rp.voxel;
+    j["colors"] = sy::colors_name(rp.colors);
+    j["scale"] = rp.scale;
+    j["offset"] = rp.offset;
     j["fruit_count"] = scene.fruits.size();
     j["fruit_present"] = present;
     j["bunch_count"] = scene.bunch_count;
@@ -79,7 +86,13 @@ int main(int argc, char** argv) {
         "touching)");
     tool.option(
         "mode", sy::mode_name(rp.mode), [&](const std::string& s) { rp.mode = sy::parse_mode(s); },
-        "explicit (solid voxels), implicit (visible surfaces, NeRF-like), degraded (poor masks)");
+        "explicit (solid voxels), implicit (visible surfaces, NeRF-like), degraded (poor masks); "
+        "sampled off the lattice: surface (random on the surface), sfm (structure from motion: "
+        "uneven, holes, duplicates), stripes (scan lines), volume (random inside)");
+    tool.option(
+        "colors", sy::colors_name(rp.colors),
+        [&](const std::string& s) { rp.colors = sy::parse_colors(s); },
+        "natural (fruit-rgb, green leaves, dark ground) or mask (fruit white, the rest black)");
     tool.option("seed", &sp.seed, "random seed: the same seed gives the same bytes");
     tool.option("truth", &truth,
                 "also write the fruit (id, centre, radius, bunch, points) as JSON here");
@@ -90,6 +103,8 @@ int main(int argc, char** argv) {
     tool.option("bunch-max", &sp.bunch_max, "most fruit per bunch");
     tool.option("touch-gap", &sp.touch_gap,
                 "gap between touching fruit of a bunch: uniform in [0, this], m");
+    tool.option("overlap", &sp.overlap,
+                "fruit of a bunch may interpenetrate by up to this x the smaller radius");
     tool.option("separation", &sp.separation, "least gap between fruit of different bunches, m");
     tool.option("canopy", &sp.canopy, "half axes of the canopy ellipsoid, m");
     tool.option("shell", &sp.shell,
@@ -112,6 +127,17 @@ int main(int argc, char** argv) {
                 "implicit: chance of a noise bridge per close pair");
     tool.option("floaters", &rp.floaters, "implicit: floater blobs per fruit");
     tool.option("recall", &rp.recall, "degraded: mean fraction of each fruit kept by the masks");
+    tool.option("noise", &rp.noise,
+                "sampled modes: sigma of each point's jitter, as a fraction of the fruit radius");
+    tool.option("holes", &rp.holes, "sfm: mean number of empty caps per fruit");
+    tool.option("duplicates", &rp.duplicates, "sfm: fraction of points written twice");
+    tool.option("density-spread", &rp.density_spread, "sfm: sigma of each fruit's log density");
+    tool.option(
+        "shading", &rp.shading,
+        "sampled modes: 0 flat colour .. 1 black where a surface faces away from the light");
+    tool.option("scale", &rp.scale,
+                "units: written coordinates = metres x scale + offset (1000: millimetres)");
+    tool.option("offset", &rp.offset, "units: added after --scale");
     tool.option("leaf-leak", &rp.leaf_leak, "fraction of leaves exported as green points");
     tool.option("background", &rp.background, "dark ground points, as a fraction of fruit points");
     tool.option("outliers", &rp.outliers, "bright sparse outliers, as a fraction of fruit points");

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <pc/core/error.h>
@@ -11,8 +12,11 @@
 #include <pc/scenes/render.h>
 
 #include "cell_key.h"
+#include "emit.h"
 
 namespace pc::scenes {
+
+using namespace detail;
 
 namespace {
 
@@ -23,14 +27,6 @@ void require(bool ok, const std::string& what) {
         throw InvalidArgument("render: " + what);
     }
 }
-
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 cross(const Vec3& a, const Vec3& b) {
-    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-Vec3 unit(const Vec3& a) { return scaled(a, 1.0 / std::sqrt(dot(a, a))); }
 
 /// Two unit vectors perpendicular to unit `d` and to each other.
 std::pair<Vec3, Vec3> basis(const Vec3& d) {
@@ -107,26 +103,20 @@ std::vector<Voxel> leaf_voxels(const Leaf& l,
     return out;
 }
 
-std::uint8_t channel(double v) {
-    return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L));
-}
-
-std::uint32_t pack(double r, double g, double b) {
-    return (std::uint32_t{channel(r)} << 16) | (std::uint32_t{channel(g)} << 8) | channel(b);
-}
+constexpr std::array<std::uint8_t, 3> kLeafRgb{60, 125, 45};
 
 /// Adds points with colours; owns the colour model.
 class Output {
 public:
-    Output(Rendered& out, Rng& rng) : out_(out), rng_(rng) {}
-    void add(const Vec3& p, std::uint32_t rgb, std::uint32_t gt) {
-        out_.xyz.push_back(
-            {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
-        out_.rgb.push_back(rgb);
-        out_.gt.push_back(gt);
-    }
+    Output(Rendered& out, Rng& rng, Colors colors) : out_(out), rng_(rng), colors_(colors) {}
+    void add(const Vec3& p, std::uint32_t rgb, std::uint32_t gt) { add_point(out_, p, rgb, gt); }
+    [[nodiscard]] Rendered& points() { return out_; }
     /// A base colour under sun and shade: per-point brightness 0.92..1.08 (times `tone`), ±8 noise.
     std::uint32_t shade(const std::array<std::uint8_t, 3>& base, double tone = 1.0) {
+        if (colors_ == Colors::kMask) {  // a semantic export: fruit white, leaves black
+            const double c = base == kLeafRgb ? rng_.uniform(0, 12) : rng_.uniform(243, 255);
+            return pack(c, c, c);
+        }
         const double s = tone * rng_.uniform(0.92, 1.08);
         return pack(base[0] * s + rng_.uniform(-8, 8), base[1] * s + rng_.uniform(-8, 8),
                     base[2] * s + rng_.uniform(-8, 8));
@@ -135,9 +125,8 @@ public:
 private:
     Rendered& out_;
     Rng& rng_;
+    Colors colors_;
 };
-
-constexpr std::array<std::uint8_t, 3> kLeafRgb{60, 125, 45};
 
 /// Pinhole cameras on three rings (elevation 5°, 30°, 60°) around the canopy, looking at its
 /// centre; a z-buffer each.
@@ -308,13 +297,31 @@ void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
 namespace {
 
 constexpr std::pair<std::string_view, Mode> kModes[] = {
-    {"explicit", Mode::kExplicit}, {"implicit", Mode::kImplicit}, {"degraded", Mode::kDegraded}};
+    {"explicit", Mode::kExplicit}, {"implicit", Mode::kImplicit}, {"degraded", Mode::kDegraded},
+    {"surface", Mode::kSurface},   {"sfm", Mode::kSfm},           {"stripes", Mode::kStripes},
+    {"volume", Mode::kVolume}};
+constexpr std::pair<std::string_view, Colors> kColors[] = {{"natural", Colors::kNatural},
+                                                           {"mask", Colors::kMask}};
 
 }  // namespace
 
 Mode parse_mode(const std::string& text) { return parse_name<Mode>(kModes, text, "--mode"); }
 
 std::string mode_name(Mode mode) { return name_of<Mode>(kModes, mode); }
+
+std::string mode_names() {
+    std::string words;
+    for (const auto& [word, mode] : kModes) {
+        words += (words.empty() ? "" : ", ") + std::string(word);
+    }
+    return words;
+}
+
+Colors parse_colors(const std::string& text) {
+    return parse_name<Colors>(kColors, text, "--colors");
+}
+
+std::string colors_name(Colors colors) { return name_of<Colors>(kColors, colors); }
 
 void RenderParams::validate() const {
     require(voxel >= 1e-5 && voxel <= 1.0, "voxel must be in [1e-5, 1]");
@@ -329,6 +336,15 @@ void RenderParams::validate() const {
     require(leaf_leak >= 0 && leaf_leak <= 1, "leaf_leak must be in [0, 1]");
     require(background >= 0 && background <= 100, "background must be in [0, 100]");
     require(outliers >= 0 && outliers <= 100, "outliers must be in [0, 100]");
+    require(noise >= 0 && noise <= 1, "noise must be in [0, 1] radii");
+    require(holes >= 0 && holes <= 20, "holes must be in [0, 20] per fruit");
+    require(duplicates >= 0 && duplicates <= 1, "duplicates must be in [0, 1]");
+    require(density_spread >= 0 && density_spread <= 3, "density_spread must be in [0, 3]");
+    require(shading >= 0 && shading <= 1, "shading must be in [0, 1]");
+    require(scale > 0 && std::isfinite(scale) && scale <= 1e6, "scale must be in (0, 1e6]");
+    for (double o : offset) {
+        require(std::isfinite(o) && std::abs(o) <= 1e6, "offset must be finite, |offset| <= 1e6");
+    }
 }
 
 namespace {
@@ -449,56 +465,37 @@ void add_clutter(const Scene& s,
             emit.add(q, emit.shade(kLeafRgb), 0);
         }
     }
-    const double ground = 1.5 * std::max(s.canopy[0], s.canopy[1]);
-    const auto n_ground =
-        static_cast<std::uint64_t>(std::llround(p.background * static_cast<double>(fruit_total)));
-    for (std::uint64_t k = 0; k < n_ground; ++k) {
-        const double rho = ground * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
-        const double grey = rng.uniform(10, 70);
-        emit.add(
-            {rho * std::cos(phi), rho * std::sin(phi), -s.canopy[2] - 0.3 + 0.01 * rng.normal()},
-            pack(grey, grey * rng.uniform(0.9, 1.1), grey * rng.uniform(0.9, 1.1)), 0);
-    }
-    const auto n_out =
-        static_cast<std::uint64_t>(std::llround(p.outliers * static_cast<double>(fruit_total)));
-    for (std::uint64_t k = 0; k < n_out; ++k) {
-        emit.add({1.2 * s.canopy[0] * rng.uniform(-1, 1), 1.2 * s.canopy[1] * rng.uniform(-1, 1),
-                  1.2 * s.canopy[2] * rng.uniform(-1, 1)},
-                 pack(rng.uniform(150, 255), rng.uniform(150, 255), rng.uniform(150, 255)), 0);
-    }
-}
-
-/// `out` in a fixed shuffle, so that nothing downstream can lean on the generation order, with
-/// the points of each of the `fruits` counted.
-Rendered shuffled_points(const Rendered& out, std::size_t fruits, Rng& rng) {
-    const std::size_t n = out.xyz.size();
-    std::vector<std::size_t> perm(n);
-    std::iota(perm.begin(), perm.end(), std::size_t{0});
-    for (std::size_t k = n; k > 1; --k) {
-        std::swap(perm[k - 1], perm[rng.below(k)]);
-    }
-    Rendered shuffled;
-    shuffled.xyz.resize(n);
-    shuffled.rgb.resize(n);
-    shuffled.gt.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-        shuffled.xyz[k] = out.xyz[perm[k]];
-        shuffled.rgb[k] = out.rgb[perm[k]];
-        shuffled.gt[k] = out.gt[perm[k]];
-    }
-    shuffled.fruit_points.assign(fruits, 0);
-    for (auto g : shuffled.gt) {
-        if (g != 0) {
-            ++shuffled.fruit_points[g - 1];
-        }
-    }
-    return shuffled;
+    add_ground_and_outliers(s, p, fruit_total, rng, emit.points());
 }
 
 }  // namespace
 
-Rendered render(const Scene& s, const RenderParams& p) {
-    p.validate();
+namespace {
+
+/// Fruit of a bunch may interpenetrate: a voxel inside two of them belongs to the one whose
+/// centre is nearer relative to its radius.
+void give_shared_voxels_to_one(const Scene& s, double v, std::vector<std::vector<Voxel>>& fruit) {
+    std::unordered_map<std::uint64_t, std::pair<double, std::size_t>> owner;
+    const auto score = [&](std::size_t f, const Voxel& x) {
+        const Vec3 d = sub(centre_of(x, v), s.fruits[f].centre);
+        return std::sqrt(dot(d, d)) / s.fruits[f].radius;
+    };
+    for (std::size_t f = 0; f < fruit.size(); ++f) {
+        for (const auto& x : fruit[f]) {
+            const auto [it, added] = owner.try_emplace(cell_key(x.i, x.j, x.k), score(f, x), f);
+            if (!added && score(f, x) < it->second.first) {
+                it->second = {score(f, x), f};
+            }
+        }
+    }
+    for (std::size_t f = 0; f < fruit.size(); ++f) {
+        std::erase_if(fruit[f], [&](const Voxel& x) {
+            return owner.at(cell_key(x.i, x.j, x.k)).second != f;
+        });
+    }
+}
+
+Rendered render_lattice(const Scene& s, const RenderParams& p) {
     const double v = p.voxel;
     double r_min = std::numeric_limits<double>::infinity();
     for (const auto& f : s.fruits) {
@@ -508,7 +505,7 @@ Rendered render(const Scene& s, const RenderParams& p) {
             "the voxel must not be larger than the smallest fruit radius");
     Rendered out;
     Rng rng(p.seed, 2);
-    Output emit(out, rng);
+    Output emit(out, rng, p.colors);
 
     std::vector<std::vector<Voxel>> fruit(s.fruits.size());
     std::unordered_set<std::uint64_t> occupied;
@@ -518,6 +515,7 @@ Rendered render(const Scene& s, const RenderParams& p) {
             occupied.insert(cell_key(x.i, x.j, x.k));
         }
     }
+    give_shared_voxels_to_one(s, v, fruit);
     std::vector<std::vector<Voxel>> leaves(s.leaves.size());
     for (std::size_t l = 0; l < s.leaves.size(); ++l) {
         leaves[l] = leaf_voxels(s.leaves[l], v, occupied);
@@ -535,6 +533,24 @@ Rendered render(const Scene& s, const RenderParams& p) {
     }
     add_clutter(s, p, leaves, out.xyz.size(), rng, emit);
     return shuffled_points(out, s.fruits.size(), rng);
+}
+
+}  // namespace
+
+Rendered render(const Scene& s, const RenderParams& p) {
+    p.validate();
+    Rendered out =
+        p.mode == Mode::kExplicit || p.mode == Mode::kImplicit || p.mode == Mode::kDegraded
+            ? render_lattice(s, p)
+            : render_sampled(s, p);
+    if (p.scale != 1 || p.offset != Vec3{0, 0, 0}) {
+        for (auto& q : out.xyz) {
+            for (int a = 0; a < 3; ++a) {
+                q[a] = static_cast<float>(static_cast<double>(q[a]) * p.scale + p.offset[a]);
+            }
+        }
+    }
+    return out;
 }
 
 io::Blob to_blob(const Rendered& r) {

@@ -65,6 +65,7 @@ void SceneParams::validate() const {
     require(bunch_min >= 1 && bunch_min <= bunch_max && bunch_max <= 1000,
             "bunch sizes must satisfy 1 <= bunch_min <= bunch_max <= 1000");
     require(touch_gap >= 0 && std::isfinite(touch_gap), "touch_gap must be >= 0");
+    require(overlap >= 0 && overlap <= 0.5, "overlap must be in [0, 0.5]");
     require(separation >= 0 && std::isfinite(separation), "separation must be >= 0");
     for (double a : canopy) {
         require(a > 0 && std::isfinite(a), "canopy half axes must be > 0");
@@ -132,7 +133,9 @@ Scene make_scene(const SceneParams& p) {
         bool ok = true;
         grid.for_near(c, [&](std::uint32_t i) {
             const Fruit& f = s.fruits[i];
-            const double need = r + f.radius + (f.bunch == bunch ? 0.0 : p.separation);
+            const double need =
+                r + f.radius +
+                (f.bunch == bunch ? -p.overlap * std::min(r, f.radius) : p.separation);
             ok = ok && dist2(c, f.centre) >= need * need;
         });
         return ok;
@@ -170,7 +173,8 @@ Scene make_scene(const SceneParams& p) {
                 const Fruit m = s.fruits[first + rng.below(s.fruits.size() - first)];
                 const Vec3 d = rng.direction();
                 const double r = radius();
-                const double at = m.radius + r + rng.uniform(0, p.touch_gap);
+                const double at =
+                    m.radius + r + rng.uniform(-p.overlap * std::min(m.radius, r), p.touch_gap);
                 const Vec3 c{m.centre[0] + at * d[0], m.centre[1] + at * d[1],
                              m.centre[2] + at * d[2]};
                 if (inside_canopy(c, 1.1) && fits(c, r, bunch)) {

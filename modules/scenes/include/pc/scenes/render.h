@@ -17,11 +17,29 @@ enum class Mode {
                 ///< noise bridges between touching fruit; floaters
     kDegraded,  ///< explicit geometry lifted from poor masks: per-fruit recall, fruit missed or
                 ///< fragmented
+    // Sampled off the lattice (`voxel` is the point spacing); leaves as random points on discs:
+    kSurface,  ///< uniform random points on each fruit's visible surface (splats, meshes)
+    kSfm,      ///< structure from motion: surface density falling away from the outside of the
+               ///< tree, per-fruit density spread, holes, exact duplicate points
+    kStripes,  ///< a scanner's lines: vertical planes `voxel` apart, points voxel/3 apart along
+               ///< them, only the side facing the scanner
+    kVolume,   ///< uniform random points inside each fruit (solid, off the lattice)
+};
+
+/// How points are coloured.
+enum class Colors {
+    kNatural,  ///< fruit_rgb, leaves green, ground dark; sampled modes add `shading`
+    kMask,     ///< a semantic export: fruit near white, leaves and ground near black
 };
 
 /// Parses "explicit", "implicit" or "degraded"; throws pc::InvalidArgument.
 [[nodiscard]] Mode parse_mode(const std::string& text);
 [[nodiscard]] std::string mode_name(Mode mode);
+/// The mode names in order, for --help.
+[[nodiscard]] std::string mode_names();
+/// Parses "natural" or "mask"; throws pc::InvalidArgument.
+[[nodiscard]] Colors parse_colors(const std::string& text);
+[[nodiscard]] std::string colors_name(Colors colors);
 
 /// Parameters of render().
 struct RenderParams {
@@ -40,6 +58,16 @@ struct RenderParams {
     double leaf_leak = 0.1;   ///< fraction of leaves exported as green points
     double background = 0.1;  ///< dark ground points, as a fraction of fruit points
     double outliers = 0.005;  ///< bright sparse points, as a fraction of fruit points
+    // sampled modes
+    double noise = 0;         ///< σ of each point's jitter, as a fraction of its fruit's radius
+    double holes = 1;         ///< sfm: mean number of empty caps per fruit
+    double duplicates = 0.1;  ///< sfm: fraction of points written twice, exactly
+    double density_spread = 0.5;  ///< sfm: σ of each fruit's log density
+    double shading = 0;  ///< brightness 1 - shading × (1 - max(0, normal · light)); 0 = flat
+    Colors colors = Colors::kNatural;
+    // units (every mode): written coordinates = metres × scale + offset
+    double scale = 1;
+    Vec3 offset{0, 0, 0};
     std::uint64_t seed = 1;
 
     void validate() const;  ///< throws pc::InvalidArgument naming the field

@@ -40,7 +40,8 @@ struct SceneParams {
     double radius_spread = 0.1;       ///< radii uniform in radius·(1 ± spread)
     std::uint32_t bunch_min = 1;      ///< fruit per bunch, uniform in [bunch_min, bunch_max]
     std::uint32_t bunch_max = 1;
-    double touch_gap = 0.002;    ///< gap between touching fruit of a bunch, uniform in [0, this]
+    double touch_gap = 0.002;  ///< gap between touching fruit of a bunch, uniform in [0, this]
+    double overlap = 0;  ///< fruit of a bunch may interpenetrate by up to this × the smaller radius
     double separation = 0.03;    ///< least gap between fruit of different bunches
     Vec3 canopy{1.0, 1.0, 0.8};  ///< half axes of the canopy ellipsoid, m
     double shell = 0.5;          ///< bunches sit between this fraction of the canopy and its edge

@@ -1,0 +1,54 @@
+#pragma once
+// Internal to the scenes module: what render() and the sampled modes share (colour packing, the
+// ground and outlier clutter, the final shuffle, small vector algebra).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include <pc/core/random.h>
+#include <pc/scenes/render.h>
+
+namespace pc::scenes::detail {
+
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+inline Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+inline Vec3 unit(const Vec3& a) { return scaled(a, 1.0 / std::sqrt(dot(a, a))); }
+
+/// Packs 0x00RRGGBB from channels rounded and clamped to 0..255.
+inline std::uint32_t pack(double r, double g, double b) {
+    const auto c = [](double v) {
+        return static_cast<std::uint32_t>(std::clamp(std::lround(v), 0L, 255L));
+    };
+    return (c(r) << 16) | (c(g) << 8) | c(b);
+}
+
+/// Appends one point.
+inline void add_point(Rendered& out, const Vec3& p, std::uint32_t rgb, std::uint32_t gt) {
+    out.xyz.push_back(
+        {static_cast<float>(p[0]), static_cast<float>(p[1]), static_cast<float>(p[2])});
+    out.rgb.push_back(rgb);
+    out.gt.push_back(gt);
+}
+
+/// Dark ground points (`background` × fruit_total, grey 10-70, or `ground_rgb` when given) on a
+/// disc 0.3 m below the canopy and bright sparse outliers (`outliers` × fruit_total) in 1.2 × the
+/// canopy box.
+void add_ground_and_outliers(const Scene& s,
+                             const RenderParams& p,
+                             std::size_t fruit_total,
+                             Rng& rng,
+                             Rendered& out);
+
+/// `out` in a fixed shuffle, so that nothing downstream can lean on the generation order, with
+/// the points of each of the `fruits` counted.
+Rendered shuffled_points(const Rendered& out, std::size_t fruits, Rng& rng);
+
+/// The sampled modes (surface, sfm, stripes, volume): sample.cpp.
+Rendered render_sampled(const Scene& s, const RenderParams& p);
+
+}  // namespace pc::scenes::detail

@@ -1,0 +1,238 @@
+// The sampled modes: points drawn at random on (or in) each fruit instead of on the voxel
+// lattice, for the sampling kinds real reconstructions have (splats and meshes, structure from
+// motion, scan lines, solid occupancy off the lattice).
+#include <cmath>
+#include <limits>
+
+#include <pc/core/error.h>
+
+#include "emit.h"
+
+namespace pc::scenes::detail {
+
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+constexpr std::array<std::uint8_t, 3> kLeaf{60, 125, 45};
+
+const Vec3& light() {
+    static const Vec3 l = unit({0.3, 0.2, 1.0});
+    return l;
+}
+
+/// Colours: natural (base × tone × shading, ±8 noise) or mask (fruit near white, the rest near
+/// black).
+class Painter {
+public:
+    Painter(const RenderParams& p, Rng& rng) : p_(p), rng_(rng) {}
+
+    std::uint32_t fruit(const std::array<std::uint8_t, 3>& base, double tone, const Vec3& normal) {
+        return paint(base, tone, std::max(0.0, dot(normal, light())), true);
+    }
+    std::uint32_t leaf(const Vec3& normal) {
+        return paint(kLeaf, 1.0, std::abs(dot(normal, light())), false);
+    }
+
+private:
+    std::uint32_t paint(const std::array<std::uint8_t, 3>& base,
+                        double tone,
+                        double facing,
+                        bool is_fruit) {
+        if (p_.colors == Colors::kMask) {
+            const double c = is_fruit ? rng_.uniform(243, 255) : rng_.uniform(0, 12);
+            return pack(c, c, c);
+        }
+        const double s = tone * (1 - p_.shading * (1 - facing)) * rng_.uniform(0.95, 1.05);
+        return pack(base[0] * s + rng_.uniform(-8, 8), base[1] * s + rng_.uniform(-8, 8),
+                    base[2] * s + rng_.uniform(-8, 8));
+    }
+
+    const RenderParams& p_;
+    Rng& rng_;
+};
+
+std::uint64_t poisson(double mean, Rng& rng) {
+    const double limit = std::exp(-mean);
+    std::uint64_t k = 0;
+    for (double prod = rng.uniform(); prod > limit; prod *= rng.uniform()) {
+        ++k;
+    }
+    return k;
+}
+
+/// Draws the points of every fruit for the sampled modes.
+class Sampler {
+public:
+    Sampler(const Scene& s, const RenderParams& p, Rng& rng, Rendered& out)
+        : s_(s), p_(p), rng_(rng), paint_(p, rng), out_(out), members_(s.bunch_count) {
+        for (std::size_t f = 0; f < s.fruits.size(); ++f) {
+            members_[s.fruits[f].bunch].push_back(static_cast<std::uint32_t>(f));
+        }
+        const double a = rng_.uniform(0, 2 * kPi);  // the scanner's side (stripes)
+        toward_scanner_ = {std::cos(a), std::sin(a), 0};
+        across_ = {-std::sin(a), std::cos(a), 0};
+    }
+
+    void fruit(std::size_t f) {
+        const Fruit& x = s_.fruits[f];
+        const double tone = rng_.uniform(0.85, 1.1), v = p_.voxel, r = x.radius;
+        const auto emit = [&](const Vec3& d, double depth, std::size_t copies) {
+            Vec3 q{x.centre[0] + depth * d[0], x.centre[1] + depth * d[1],
+                   x.centre[2] + depth * d[2]};
+            if (inside_other(f, q, depth / r)) {
+                return;
+            }
+            for (auto& c : q) {
+                c += p_.noise * r * rng_.normal();
+            }
+            const std::uint32_t rgb = paint_.fruit(s_.fruit_rgb, tone, d);
+            for (std::size_t k = 0; k < copies; ++k) {
+                add_point(out_, q, rgb, static_cast<std::uint32_t>(f + 1));
+            }
+        };
+        const double area = 4 * kPi * r * r / (v * v);
+        switch (p_.mode) {
+            case Mode::kSurface:
+                for (auto n = std::llround(area); n > 0; --n) {
+                    emit(rng_.direction(), r, 1);
+                }
+                break;
+            case Mode::kVolume:
+                for (auto n = std::llround(area * r / (3 * v)); n > 0; --n) {
+                    emit(rng_.direction(), r * std::cbrt(rng_.uniform()), 1);
+                }
+                break;
+            case Mode::kSfm:
+                sfm(f, area, emit);
+                break;
+            case Mode::kStripes:
+                stripes(f, emit);
+                break;
+            default:
+                throw InvalidArgument("render: not a sampled mode");
+        }
+    }
+
+    /// Leaked leaves: uniform random points on the disc at the point spacing.
+    void leaves() {
+        const double v = p_.voxel;
+        for (const Leaf& l : s_.leaves) {
+            if (rng_.uniform() >= p_.leaf_leak) {
+                continue;
+            }
+            const Vec3 helper = std::abs(l.normal[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+            const Vec3 e1 = unit(cross(l.normal, helper)), e2 = cross(l.normal, e1);
+            for (auto n = std::llround(kPi * l.radius * l.radius / (v * v)); n > 0; --n) {
+                const double rho = l.radius * std::sqrt(rng_.uniform()),
+                             phi = rng_.uniform(0, 2 * kPi);
+                Vec3 q = l.centre;
+                for (int a = 0; a < 3; ++a) {
+                    q[a] += rho * (std::cos(phi) * e1[a] + std::sin(phi) * e2[a]) +
+                            p_.noise * v * rng_.normal();
+                }
+                add_point(out_, q, paint_.leaf(l.normal), 0);
+            }
+        }
+    }
+
+private:
+    /// True when q (at `relative` × the radius from fruit f's centre) lies deeper inside another
+    /// fruit of the bunch than in f: interpenetrating fruit show only their outer surfaces.
+    [[nodiscard]] bool inside_other(std::size_t f, const Vec3& q, double relative) const {
+        for (auto g : members_[s_.fruits[f].bunch]) {
+            if (g != f) {
+                const Fruit& o = s_.fruits[g];
+                const Vec3 d = sub(q, o.centre);
+                if (std::sqrt(dot(d, d)) / o.radius < relative) {
+                    return true;
+                }
+            }
+        }
+        return false;
+    }
+
+    /// Structure from motion: cameras circle the tree, so each fruit's outer side is dense and its
+    /// inner side sparse (down to a tenth); each fruit's density varies (log-normal); holes are
+    /// empty caps; some points are written twice.
+    template <class Emit>
+    void sfm(std::size_t f, double area, Emit& emit) {
+        const Fruit& x = s_.fruits[f];
+        const double h = std::hypot(x.centre[0], x.centre[1]);
+        const Vec3 outward = h > 1e-9 ? Vec3{x.centre[0] / h, x.centre[1] / h, 0} : Vec3{1, 0, 0};
+        const double density = std::clamp(std::exp(p_.density_spread * rng_.normal()), 0.2, 3.0);
+        std::vector<std::pair<Vec3, double>> holes;
+        for (auto k = poisson(p_.holes, rng_); k > 0; --k) {
+            holes.emplace_back(rng_.direction(), std::cos(std::asin(rng_.uniform(0.2, 0.45))));
+        }
+        for (auto n = std::llround(area * density); n > 0; --n) {
+            const Vec3 d = rng_.direction();
+            const double keep = 0.1 + 0.9 * std::max(0.0, dot(d, outward));
+            bool in_hole = false;
+            for (const auto& [centre, cosine] : holes) {
+                in_hole = in_hole || dot(d, centre) > cosine;
+            }
+            if (rng_.uniform() < keep && !in_hole) {
+                emit(d, x.radius, rng_.uniform() < p_.duplicates ? 2 : 1);
+            }
+        }
+    }
+
+    /// Scan lines: vertical planes `voxel` apart across the scanner's view, points a third of that
+    /// apart along each line, only on the side facing the scanner.
+    template <class Emit>
+    void stripes(std::size_t f, Emit& emit) {
+        const Fruit& x = s_.fruits[f];
+        const double v = p_.voxel, r = x.radius, at = dot(x.centre, across_);
+        const Vec3 up{0, 0, 1};
+        for (auto k = static_cast<std::int64_t>(std::ceil((at - r) / v));
+             static_cast<double>(k) * v <= at + r; ++k) {
+            const double t = static_cast<double>(k) * v - at;
+            const double rho = std::sqrt(std::max(0.0, r * r - t * t));
+            const auto n = static_cast<std::int64_t>(std::ceil(2 * kPi * rho / (v / 3)));
+            const double phase = rng_.uniform(0, 2 * kPi);
+            for (std::int64_t j = 0; j < n; ++j) {
+                const double phi = phase + 2 * kPi * static_cast<double>(j) / static_cast<double>(n);
+                Vec3 d;
+                for (int a = 0; a < 3; ++a) {
+                    d[a] = (t * across_[a] +
+                            rho * (std::cos(phi) * toward_scanner_[a] + std::sin(phi) * up[a])) /
+                           r;
+                }
+                if (dot(d, toward_scanner_) > 0) {
+                    emit(d, r, 1);
+                }
+            }
+        }
+    }
+
+    const Scene& s_;
+    const RenderParams& p_;
+    Rng& rng_;
+    Painter paint_;
+    Rendered& out_;
+    std::vector<std::vector<std::uint32_t>> members_;
+    Vec3 toward_scanner_{}, across_{};
+};
+
+}  // namespace
+
+Rendered render_sampled(const Scene& s, const RenderParams& p) {
+    for (const auto& f : s.fruits) {
+        if (f.radius < p.voxel) {
+            throw InvalidArgument(
+                "render: the point spacing must not be larger than the smallest fruit radius");
+        }
+    }
+    Rendered out;
+    Rng rng(p.seed, 3);
+    Sampler sampler(s, p, rng, out);
+    for (std::size_t f = 0; f < s.fruits.size(); ++f) {
+        sampler.fruit(f);
+    }
+    const std::size_t fruit_total = out.xyz.size();
+    sampler.leaves();
+    add_ground_and_outliers(s, p, fruit_total, rng, out);
+    return shuffled_points(out, s.fruits.size(), rng);
+}
+
+}  // namespace pc::scenes::detail

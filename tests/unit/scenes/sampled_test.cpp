@@ -1,0 +1,206 @@
+// The sampled modes (surface, sfm, stripes, volume), mask colours, interpenetrating fruit and
+// units: each against a closed form.
+#include <cmath>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/scenes/render.h>
+
+namespace pc::scenes {
+namespace {
+
+constexpr double kPi = 3.141592653589793;
+
+double dist(const std::array<float, 3>& q, const Vec3& c) {
+    return std::sqrt((q[0] - c[0]) * (q[0] - c[0]) + (q[1] - c[1]) * (q[1] - c[1]) +
+                     (q[2] - c[2]) * (q[2] - c[2]));
+}
+
+/// One fruit of radius 0.03 at (0.1, 0.2, 0.3), nothing else.
+Scene one_fruit() {
+    Scene s;
+    s.fruits.push_back({{0.1, 0.2, 0.3}, 0.03, 0});
+    s.bunch_count = 1;
+    return s;
+}
+
+RenderParams bare(Mode mode, double spacing = 0.003) {
+    return {.mode = mode, .voxel = spacing, .leaf_leak = 0, .background = 0, .outliers = 0};
+}
+
+TEST(Sampled, SurfacePointsLieOnTheSphereOnePerSpacingSquared) {
+    const Scene s = one_fruit();
+    const Rendered r = render(s, bare(Mode::kSurface));
+    // n = area / spacing^2 = 4 pi 0.03^2 / 0.003^2
+    EXPECT_EQ(r.xyz.size(), static_cast<std::size_t>(std::llround(4 * kPi * 100)));
+    for (const auto& q : r.xyz) {
+        ASSERT_NEAR(dist(q, s.fruits[0].centre), 0.03, 1e-6);
+    }
+    EXPECT_EQ(r.fruit_points[0], r.xyz.size());
+}
+
+TEST(Sampled, VolumePointsFillTheBallOnePerSpacingCubed) {
+    const Scene s = one_fruit();
+    const Rendered r = render(s, bare(Mode::kVolume));
+    EXPECT_EQ(r.xyz.size(), static_cast<std::size_t>(std::llround(4.0 / 3 * kPi * 1000)));
+    std::size_t inner = 0;  // uniform in volume: (1/2)^3 of the points within half the radius
+    for (const auto& q : r.xyz) {
+        ASSERT_LE(dist(q, s.fruits[0].centre), 0.03 + 1e-6);
+        inner += dist(q, s.fruits[0].centre) < 0.015;
+    }
+    EXPECT_NEAR(static_cast<double>(inner) / r.xyz.size(), 0.125, 0.03);
+}
+
+TEST(Sampled, StripesAreHalfCirclesOnParallelPlanes) {
+    const Scene s = one_fruit();
+    const double v = 0.003;
+    const Rendered r = render(s, bare(Mode::kStripes, v));
+    // Sum over planes of half the circle at v/3 per point: ~ (3 pi / v^2) * (pi r^2 / 2).
+    const double expected = 1.5 * kPi * kPi * 0.03 * 0.03 / (v * v);
+    EXPECT_NEAR(static_cast<double>(r.xyz.size()), expected, 0.05 * expected);
+    // Every point lies on the sphere, and the heights z of points of one line vary while their
+    // horizontal positions fall on lines: the distinct planes number about 2r / v.
+    for (const auto& q : r.xyz) {
+        ASSERT_NEAR(dist(q, s.fruits[0].centre), 0.03, 1e-6);
+    }
+}
+
+TEST(Sampled, SfmIsDenserOutsideHasDuplicatesAndHoles) {
+    Scene s = one_fruit();
+    s.fruits[0].centre = {0.5, 0, 0};  // outward = +x
+    RenderParams p = bare(Mode::kSfm, 0.002);
+    p.holes = 0;
+    p.density_spread = 0;
+    p.duplicates = 0.2;
+    const Rendered r = render(s, p);
+    std::size_t outer = 0, inner = 0;
+    std::map<std::array<float, 3>, int> seen;
+    for (const auto& q : r.xyz) {
+        (q[0] > 0.5 ? outer : inner) += 1;
+        ++seen[q];
+    }
+    // Keep probability 0.1 + 0.9 max(0, cos): outer half keeps 0.1 + 0.45, inner half 0.1.
+    EXPECT_NEAR(static_cast<double>(outer) / inner, 5.5, 0.6);
+    std::size_t twice = 0;
+    for (const auto& [q, n] : seen) {
+        twice += n == 2;
+    }
+    EXPECT_NEAR(static_cast<double>(twice) / seen.size(), 0.2, 0.03);
+    p.holes = 3;
+    p.duplicates = 0;
+    const Rendered holed = render(s, p);
+    EXPECT_LT(holed.xyz.size(), seen.size());  // caps removed
+}
+
+TEST(Sampled, InterpenetratingFruitShowOnlyTheirOuterSurfaces) {
+    SceneParams sp = species("plum");
+    sp.fruit_count = 40;
+    sp.bunch_min = 4;
+    sp.bunch_max = 6;
+    sp.touch_gap = 0;
+    sp.overlap = 0.1;
+    sp.canopy = {0.3, 0.3, 0.3};
+    const Scene s = make_scene(sp);
+    bool overlapping = false;
+    for (std::size_t a = 0; a < s.fruits.size(); ++a) {
+        for (std::size_t b = a + 1; b < s.fruits.size(); ++b) {
+            const auto& fa = s.fruits[a];
+            const auto& fb = s.fruits[b];
+            const std::array<float, 3> c{static_cast<float>(fa.centre[0]),
+                                         static_cast<float>(fa.centre[1]),
+                                         static_cast<float>(fa.centre[2])};
+            const double d = dist(c, fb.centre);
+            // never deeper than the allowed overlap
+            ASSERT_GE(d, fa.radius + fb.radius - 0.1 * std::min(fa.radius, fb.radius) - 1e-6);
+            overlapping = overlapping || d < fa.radius + fb.radius - 1e-4;
+        }
+    }
+    ASSERT_TRUE(overlapping);
+    const Rendered r = render(s, bare(Mode::kSurface, 0.002));
+    for (std::size_t k = 0; k < r.xyz.size(); ++k) {
+        for (std::size_t f = 0; f < s.fruits.size(); ++f) {
+            if (r.gt[k] != f + 1) {
+                ASSERT_GE(dist(r.xyz[k], s.fruits[f].centre), s.fruits[f].radius - 1e-5);
+            }
+        }
+    }
+    // On the lattice a shared voxel goes to one fruit only: no position written twice.
+    const Rendered solid = render(s, bare(Mode::kExplicit, 0.002));
+    std::map<std::array<float, 3>, int> seen;
+    for (const auto& q : solid.xyz) {
+        ASSERT_EQ(++seen[q], 1);
+    }
+}
+
+TEST(Sampled, MaskColoursAreWhiteFruitOnBlack) {
+    SceneParams sp = species("peach");
+    sp.fruit_count = 20;
+    sp.canopy = {0.5, 0.5, 0.5};
+    const Scene s = make_scene(sp);
+    for (Mode m : {Mode::kSurface, Mode::kExplicit, Mode::kImplicit}) {
+        RenderParams p{.mode = m, .voxel = 0.005, .leaf_leak = 1, .outliers = 0};
+        p.colors = Colors::kMask;
+        const Rendered r = render(s, p);
+        std::size_t dark = 0;
+        for (std::size_t k = 0; k < r.xyz.size(); ++k) {
+            const std::uint32_t c = r.rgb[k];
+            const unsigned red = (c >> 16) & 255, green = (c >> 8) & 255, blue = c & 255;
+            ASSERT_EQ(red, green);
+            ASSERT_EQ(green, blue);
+            if (r.gt[k] != 0) {
+                ASSERT_GE(red, 243u);
+            }
+            dark += red <= 12;
+        }
+        EXPECT_GT(dark, 0u) << mode_name(m);  // leaves and ground
+    }
+}
+
+TEST(Sampled, ScaleAndOffsetMoveEveryPointAndNothingElse) {
+    const Scene s = one_fruit();
+    RenderParams p = bare(Mode::kSfm);
+    const Rendered m = render(s, p);
+    p.scale = 1000;
+    p.offset = {5, -3, 2};
+    const Rendered mm = render(s, p);
+    ASSERT_EQ(m.xyz.size(), mm.xyz.size());
+    EXPECT_EQ(m.gt, mm.gt);
+    EXPECT_EQ(m.rgb, mm.rgb);
+    for (std::size_t k = 0; k < m.xyz.size(); ++k) {
+        for (int a = 0; a < 3; ++a) {
+            ASSERT_NEAR(mm.xyz[k][a], m.xyz[k][a] * 1000 + p.offset[a], 1e-3);
+        }
+    }
+}
+
+TEST(Sampled, SameSeedSameBytesAndBadParametersAreRefused) {
+    SceneParams sp = species("apple");
+    sp.fruit_count = 30;
+    sp.canopy = {0.5, 0.5, 0.5};
+    const Scene s = make_scene(sp);
+    for (Mode m : {Mode::kSurface, Mode::kSfm, Mode::kStripes, Mode::kVolume}) {
+        RenderParams p{.mode = m, .voxel = 0.004};
+        p.noise = 0.05;
+        p.shading = 0.5;
+        const Rendered a = render(s, p), b = render(s, p);
+        EXPECT_EQ(a.xyz, b.xyz) << mode_name(m);
+        EXPECT_EQ(a.rgb, b.rgb);
+        EXPECT_EQ(parse_mode(mode_name(m)), m);
+    }
+    RenderParams p{.mode = Mode::kSurface};
+    p.shading = 2;
+    EXPECT_THROW((void)render(s, p), InvalidArgument);
+    p = {.mode = Mode::kSurface, .voxel = 0.05};  // spacing > radius
+    EXPECT_THROW((void)render(s, p), InvalidArgument);
+    p = {.mode = Mode::kSurface};
+    p.scale = 0;
+    EXPECT_THROW((void)render(s, p), InvalidArgument);
+    sp.overlap = 0.6;
+    EXPECT_THROW((void)make_scene(sp), InvalidArgument);
+    EXPECT_THROW((void)parse_colors("grey"), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pc::scenes
