@@ -1,31 +1,28 @@
-// pc_colorfilter: keep points by colour (paper 2.3.2: suppress dark background points).
+// pc_colorfilter: keep points by colour (paper 2.3.2: suppress dark background points), by a rule
+// or by a fruit-colour word (auto: chosen from the cloud).
 #include <pc/cli/tool.h>
 #include <pc/pipeline/steps.h>
 
+#include "color_options.h"
 #include "write_step.h"
 
 namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
-    pc::filters::ColorFilterParams p;
+    pc::tools::ColorOptions color;
+    color.word = pc::filters::FruitColorParams{};  // by default the rule is chosen from the cloud
     pc::cli::Tool tool("pc_colorfilter", "keep points by colour (rgb/rgba or red green blue)");
-    const auto interval = [&](const char* name, std::optional<pc::filters::Interval>* field) {
-        return
-            [name, field](const std::string& s) { *field = pc::filters::parse_interval(name, s); };
-    };
-    tool.option("min-mean", &p.min_mean, "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
-    tool.option("min-value", &p.min_value, "keep iff HSV value max(R,G,B) > this (strict >)");
-    tool.option("hue", "off", interval("hue", &p.hue_deg),
-                "keep iff hue in LO:HI degrees, ends included; LO > HI wraps (300:30); grey "
-                "never matches");
-    tool.option("saturation", "off", interval("saturation", &p.saturation),
-                "keep iff HSV saturation in LO:HI (0..1), ends included");
-    tool.option("value", "off", interval("value", &p.value),
-                "keep iff HSV value in LO:HI (0..1), ends included");
-    tool.flag("invert", &p.invert, "keep the points the rules reject instead");
-    tool.presets(pl::preset_names(), [&](const std::string& name) { p = *pl::preset(name).color; });
-    tool.epilog("\nAll rules given must hold. See docs/tools/pc_colorfilter.md.\n");
+    pc::tools::bind_color_options(tool, color, "");
+    tool.presets(pl::preset_names(),
+                 [&](const std::string& name) { color.from_preset(pl::preset(name)); });
+    tool.epilog(
+        "\nWith no option the rule is chosen from the cloud (--fruit-color auto); all rules "
+        "given must hold. See docs/tools/pc_colorfilter.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        pc::tools::write_step(io, pl::apply_color_filter(io.read(), p));
+        pl::ChainParams chain;
+        color.apply(chain);
+        pc::tools::write_step(io, chain.color
+                                      ? pl::apply_color_filter(io.read(), *chain.color)
+                                      : pl::apply_fruit_color(io.read(), *chain.fruit_color));
     });
 }

@@ -4,6 +4,7 @@
 #include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
+#include "color_options.h"
 #include "split_options.h"
 
 namespace pl = pc::pipeline;
@@ -12,7 +13,8 @@ namespace seg = pc::segmentation;
 int main(int argc, char** argv) {
     // Each step's Params live here, bound to options; the preset fills them first.
     pl::ChainParams chain = pl::preset("dense");
-    pc::filters::ColorFilterParams color = *chain.color;
+    pc::tools::ColorOptions color;
+    color.from_preset(chain);
     pc::filters::CropParams crop;
     pc::filters::VoxelParams voxel;
     pc::filters::KnnOutlierParams knn = *chain.knn;
@@ -28,14 +30,13 @@ int main(int argc, char** argv) {
                        pc::cli::Output::kText);
     tool.presets(pl::preset_names(), [&](const std::string& name) {
         chain = pl::preset(name);
-        color = chain.color.value_or(color);
+        color.from_preset(chain);
         crop = chain.crop.value_or(crop);
         voxel = chain.voxel.value_or(voxel);
         knn = chain.knn.value_or(knn);
         split = chain.split.value_or(split);
     });
-    tool.option("min-mean", &color.min_mean, "colour: keep iff (R+G+B)/3 > this (0..1)");
-    tool.option("min-value", &color.min_value, "colour: keep iff max(R,G,B) > this");
+    pc::tools::bind_color_options(tool, color, "colour: ");
     tool.flag("no-color", &no_color, "skip the colour filter");
     tool.option(
         "crop-min", "off",
@@ -80,7 +81,11 @@ int main(int argc, char** argv) {
     tool.option("cloud", &cloud_out, "also write the labelled cloud (binary PCD) to this file");
     tool.epilog("\nSee docs/tools/pc_fruitcount.md for the presets and the steps.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        chain.color = no_color ? std::nullopt : std::optional(color);
+        color.apply(chain);
+        if (no_color) {
+            chain.color.reset();
+            chain.fruit_color.reset();
+        }
         chain.knn = no_knn ? std::nullopt : std::optional(knn);
         chain.split = no_split ? std::nullopt : std::optional(split);
         if (chain.crop) {

@@ -191,7 +191,7 @@ TEST(Chain, DensePresetCountsTheSameAfterScalingAndRotating) {
 }
 
 TEST(Chain, DarkFruitCountedZeroIsAWarningInTheReportAndOnStderr) {
-    // A dark red ball (mean RGB 0.21): the default colour rule (mean RGB > 0.5) drops every
+    // A dark red ball (mean RGB 0.21): the paper's colour rule (mean RGB > 0.5) drops every
     // point. The count of 0 stands, with exit 0, but never silently.
     std::string cloud =
         pcd_header("x y z rgb", "4 4 4 4", "F F F U", "1 1 1 1", "2000", "2000", "ascii");
@@ -202,7 +202,7 @@ TEST(Chain, DarkFruitCountedZeroIsAWarningInTheReportAndOnStderr) {
                  std::to_string(0.03 * rho * std::sin(phi)) + " " + std::to_string(0.03 * z) + " " +
                  std::to_string((120 << 16) | (20 << 8) | 20) + "\n";
     }
-    const RunResult r = run_shell("@pc_fruitcount", cloud);
+    const RunResult r = run_shell("@pc_fruitcount --preset paper-dense", cloud);
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["count"], 0);
@@ -217,6 +217,15 @@ TEST(Chain, DarkFruitCountedZeroIsAWarningInTheReportAndOnStderr) {
     EXPECT_NE(r.err.find("pc_fruitcount: warning: color_filter kept 0 of 2000 points"),
               std::string::npos)
         << r.err;
+    // The default chooses its rule from the cloud: natural colours, the saturated red is kept.
+    const RunResult chosen = run_shell("@pc_fruitcount", cloud);
+    ASSERT_EQ(chosen.code, 0) << chosen.err;
+    const auto c = nlohmann::json::parse(chosen.out);
+    EXPECT_EQ(c["count"], 1) << chosen.out;
+    EXPECT_NE(c["steps"][0]["rule"].get<std::string>().find("auto: natural colours"),
+              std::string::npos)
+        << chosen.out;
+    EXPECT_TRUE(chosen.err.empty()) << chosen.err;
     // Without the colour step the ball is one fruit, and nothing is doubtful.
     const RunResult no_color = run_shell("@pc_fruitcount --no-color", cloud);
     ASSERT_EQ(no_color.code, 0) << no_color.err;

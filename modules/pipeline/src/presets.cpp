@@ -82,6 +82,10 @@ ChainParams preset(std::string_view name) {
         // eps = 4 x the point spacing (0.016 on a 4 mm voxel grid, the paper's 0.015 in kind);
         // clusters are cut at the necks between their solid cores, hollow ones into spheres;
         // clusters below a tenth of the median cluster are not fruit.
+        // The colour rule from the cloud: the paper's mean RGB > 0.5 drops red, purple and
+        // shaded fruit (docs/robustness.md).
+        p.color.reset();
+        p.fruit_color = filters::FruitColorParams{};
         p.eps = EpsRule{.mode = EpsRule::Mode::kSpacing, .factor = 4.0};
         p.split = segmentation::RecursiveSplitParams{.rule = segmentation::SplitRule::kCores,
                                                      .core_fraction = 0.5,

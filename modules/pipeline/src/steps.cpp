@@ -75,8 +75,31 @@ Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
     io::keep_points(in, kept);
     return finish_step(std::move(in), std::move(note), "color_filter", n,
                        "the colour rule (" + describe(p) +
-                           ") keeps bright or mask-coloured fruit and drops dark, red or "
-                           "purple fruit; try --no-color or a hue rule (pc_colorfilter --hue)");
+                           ") removed nearly every point; is the fruit another colour? try "
+                           "--fruit-color (auto, mask, red, orange, yellow, green, purple, any) or "
+                           "--no-color");
+}
+
+Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p) {
+    p.validate();
+    const std::size_t n = in.size();
+    if (p.color == filters::FruitColor::kAuto && (n == 0 || io::colour_fields(in).empty())) {
+        std::string why = n == 0 ? "an empty cloud" : "no colour fields";
+        return {std::move(in),
+                "color_filter: " + why + ": every point kept",
+                {"color_filter", n, n, {}, "auto: " + why + ": no colour rule"},
+                {}};
+    }
+    filters::FruitColorChoice c = filters::choose_fruit_color(io::colours(in), p);
+    Step step = c.rule ? apply_color_filter(std::move(in), *c.rule)
+                       : Step{std::move(in),
+                              kept_note("color_filter", n, n),
+                              {"color_filter", n, n, {}, ""},
+                              {}};
+    step.note += " (" + c.reason + ")";
+    step.record.rule = c.reason;
+    step.warnings.insert(step.warnings.end(), c.warnings.begin(), c.warnings.end());
+    return step;
 }
 
 Step apply_crop(io::Blob in, const filters::CropParams& p) {
@@ -201,6 +224,8 @@ ChainResult run_chain(io::Blob in,
     };
     if (p.color) {
         take(apply_color_filter(std::move(cur), *p.color));
+    } else if (p.fruit_color) {
+        take(apply_fruit_color(std::move(cur), *p.fruit_color));
     }
     if (p.crop) {
         take(apply_crop(std::move(cur), *p.crop));
@@ -276,6 +301,9 @@ std::string count_report(const segmentation::ClusterSummary& s,
                 {"step", r.name}, {"points_in", r.points_in}, {"points_out", r.points_out}};
             for (const auto& [key, value] : r.values) {
                 step[key] = value;
+            }
+            if (!r.rule.empty()) {
+                step["rule"] = r.rule;
             }
             st.push_back(step);
         }

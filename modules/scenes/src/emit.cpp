@@ -1,6 +1,6 @@
-#include <numeric>
-
 #include "emit.h"
+
+#include <numeric>
 
 namespace pc::scenes::detail {
 

@@ -38,11 +38,8 @@ inline void add_point(Rendered& out, const Vec3& p, std::uint32_t rgb, std::uint
 /// Dark ground points (`background` × fruit_total, grey 10-70, or `ground_rgb` when given) on a
 /// disc 0.3 m below the canopy and bright sparse outliers (`outliers` × fruit_total) in 1.2 × the
 /// canopy box.
-void add_ground_and_outliers(const Scene& s,
-                             const RenderParams& p,
-                             std::size_t fruit_total,
-                             Rng& rng,
-                             Rendered& out);
+void add_ground_and_outliers(
+    const Scene& s, const RenderParams& p, std::size_t fruit_total, Rng& rng, Rendered& out);
 
 /// `out` in a fixed shuffle, so that nothing downstream can lean on the generation order, with
 /// the points of each of the `fruits` counted.

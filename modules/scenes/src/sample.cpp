@@ -191,7 +191,8 @@ private:
             const auto n = static_cast<std::int64_t>(std::ceil(2 * kPi * rho / (v / 3)));
             const double phase = rng_.uniform(0, 2 * kPi);
             for (std::int64_t j = 0; j < n; ++j) {
-                const double phi = phase + 2 * kPi * static_cast<double>(j) / static_cast<double>(n);
+                const double phi =
+                    phase + 2 * kPi * static_cast<double>(j) / static_cast<double>(n);
                 Vec3 d;
                 for (int a = 0; a < 3; ++a) {
                     d[a] = (t * across_[a] +

@@ -9,6 +9,7 @@
 #include <pc/core/error.h>
 #include <pc/filters/color_filter.h>
 #include <pc/filters/crop.h>
+#include <pc/filters/fruit_color.h>
 #include <pc/filters/knn_outlier.h>
 #include <pc/filters/voxel_downsample.h>
 #include <pc/segmentation/dbscan.h>
@@ -32,7 +33,8 @@ void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsR
 /// Every parameter of the counting chain (../shared/METHOD.md), step by step.
 /// A step whose optional is empty is skipped.
 struct ChainParams {
-    std::optional<filters::ColorFilterParams> color;
+    std::optional<filters::ColorFilterParams> color;       ///< a fixed colour rule; when empty,
+    std::optional<filters::FruitColorParams> fruit_color;  ///< a rule chosen from the cloud
     std::optional<filters::CropParams> crop;
     std::optional<filters::VoxelParams> voxel;
     std::optional<filters::KnnOutlierParams> knn;
@@ -46,8 +48,9 @@ struct ChainParams {
 [[nodiscard]] const std::vector<std::string>& preset_names();
 
 /// The named parameter set; throws pc::InvalidArgument for an unknown name.
-///  - dense: beyond the paper, for unknown clouds: eps = 4 x the point spacing, the cores split
-///    rule (no medians), clusters below 0.1 x the median size dropped; pc_fruitcount's default
+///  - dense: beyond the paper, for unknown clouds: the colour rule chosen from the cloud
+///    (filters::choose_fruit_color), eps = 4 x the point spacing, the cores split rule (no
+///    medians), clusters below 0.1 x the median size dropped; pc_fruitcount's default
 ///  - paper-dense: the paper's dense setting (sections 2.3-2.5): eps 0.015, paper split rule
 ///  - paper-sparse: the paper's degraded-mask setting: eps 0.030, split only above 5x median volume
 ///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,

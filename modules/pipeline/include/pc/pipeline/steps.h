@@ -23,6 +23,7 @@ struct StepRecord {
     /// The lengths it used, by name (dbscan: eps and the spacing it came from; the cores split:
     /// spacing, fruit_radius, hollow_radius).
     std::vector<std::pair<std::string, double>> values;
+    std::string rule;  ///< a rule chosen from the cloud, in words (the colour step), or empty
 };
 
 struct Step {
@@ -35,6 +36,9 @@ struct Step {
 };
 
 [[nodiscard]] Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p);
+/// The colour rule chosen from the cloud (filters::choose_fruit_color), then applied; the record's
+/// `rule` says which. A cloud without colour passes through under `auto` (a word needs colour).
+[[nodiscard]] Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p);
 [[nodiscard]] Step apply_crop(io::Blob in, const filters::CropParams& p);
 /// One point per occupied voxel (io::aggregate: centroid, mean colour, majority integer fields).
 [[nodiscard]] Step apply_voxel(io::Blob in, const filters::VoxelParams& p);

@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""Writes bench/robustness/scenes.txt: the condition matrix of docs/robustness.md.
+
+Deterministic (random.Random(2026)); rerun only to change the matrix, and say so in the commit.
+Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
+split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
+at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
+of the rest)."""
+import random
+import os
+
+FAMILIES = {  # layout: radius (m), pc_synth flags
+    'peach': (0.035, '--species peach --fruit-count 60 --canopy 0.7,0.7,0.55'),
+    'apple': (0.035, '--species apple --fruit-count 80 --canopy 0.8,0.8,0.65'),
+    'plum': (0.017, '--species plum --fruit-count 150 --canopy 0.6,0.6,0.5'),
+    'cherry': (0.012, '--species plum --fruit-radius 0.012 --bunch-min 2 --bunch-max 6 '
+                      '--touch-gap 0.001 --overlap 0.1 --fruit-count 150 --canopy 0.5,0.5,0.4'),
+    'grape': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 6 --bunch-max 12 '
+                     '--touch-gap 0.0005 --overlap 0.05 --fruit-count 200 --canopy 0.5,0.5,0.4'),
+}
+MODES = ['explicit', 'implicit', 'degraded', 'surface', 'sfm', 'stripes', 'volume']
+SOLID = {'explicit', 'degraded', 'volume'}       # points fill the fruit: radius <= 8 spacings
+R_OVER_S = [2, 3, 5, 8, 12, 20]
+NOISE = [0, 0.03, 0.1]                           # sigma / radius, sampled modes
+COLOURS = {'mask': None, 'red': (190, 35, 40), 'purple': (75, 30, 65), 'orange': (235, 140, 45),
+           'yellow': (225, 200, 70), 'green': (125, 175, 60)}
+UNITS = {'m': '', 'mm': '--scale 1000', 'normalised': '--scale 0.45 --offset 0.1,-0.05,0.2'}
+
+rng = random.Random(2026)
+lines = []
+for i in range(1, 241):
+    family = rng.choice(list(FAMILIES))
+    mode = rng.choice(MODES)
+    rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
+    noise = rng.choice(NOISE) if mode in ('surface', 'sfm', 'stripes', 'volume') else 0
+    colour = rng.choice(list(COLOURS))
+    shading = rng.choice([0, 0.6])
+    units = rng.choice(list(UNITS))
+    seed = rng.randrange(1, 10**6)
+    radius, flags = FAMILIES[family]
+    spacing = radius / rs
+    args = f'{flags} --radius-spread 0.2 --mode {mode} --voxel {spacing:.6g} --seed {seed}'
+    if noise:
+        args += f' --noise {noise}'
+    if colour == 'mask':
+        args += ' --colors mask'
+    else:
+        args += ' --fruit-rgb ' + ','.join(map(str, COLOURS[colour]))
+        if mode in ('surface', 'sfm', 'stripes', 'volume'):
+            args += f' --shading {shading}'
+    if UNITS[units]:
+        args += ' ' + UNITS[units]
+    held = family == 'grape' or colour == 'yellow' or mode == 'stripes' or rng.random() < 0.2
+    lines.append(f'{i:03d}|{"held-out" if held else "tune"}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}')
+
+out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
+with open(out, 'w') as f:
+    f.write('\n'.join(lines) + '\n')
+print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune')

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <pc/filters/color_filter.h>
+#include <pc/io/points.h>
+
+namespace pc::filters {
+
+/// What colour the fruit are: `auto` decides from the cloud (docs/tools/pc_fruitcount.md).
+enum class FruitColor { kAuto, kMask, kRed, kOrange, kYellow, kGreen, kPurple, kAny };
+
+/// Parses auto, mask, red, orange, yellow, green, purple or any; throws pc::InvalidArgument.
+[[nodiscard]] FruitColor parse_fruit_color(const std::string& text);
+[[nodiscard]] std::string fruit_color_name(FruitColor c);
+/// The words, in order, for --help.
+[[nodiscard]] std::string fruit_color_names();
+
+struct FruitColorParams {
+    FruitColor color = FruitColor::kAuto;
+    /// Natural colours: fruit are saturated (HSV saturation >= this); grey ground, sky, bark
+    /// highlights are not.
+    double min_saturation = 0.25;
+    void validate() const;
+};
+
+/// The colour rule chosen for a cloud.
+struct FruitColorChoice {
+    std::optional<ColorFilterParams> rule;  ///< empty: keep every point
+    std::string reason;                     ///< what was seen and chosen, for the report
+    std::vector<std::string> warnings;      ///< the choice is doubtful
+};
+
+/// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
+/// (mean RGB > 0.5), a hue word -> that hue band with saturation >= min_saturation, any -> none.
+/// auto looks at the colours (a sample of at most 100000 points):
+///  - nine in ten points grey (saturation < min_saturation): a mask export when the greys are
+///    two-toned (fewer than one in five between 0.25 and 0.75 in value): the paper's rule; else
+///    the colours say nothing about fruit: no rule, and a warning;
+///  - otherwise natural colours: keep saturated points whose hue is not foliage green
+///    (70..170 degrees); if fewer than 3 % of the saturated points are not green, the fruit look
+///    green too: keep every saturated point, with a warning (leaves are kept; give the word).
+[[nodiscard]] FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours,
+                                                  const FruitColorParams& params);
+
+}  // namespace pc::filters

@@ -1,0 +1,89 @@
+#pragma once
+// The colour step's options, declared once for pc_colorfilter and pc_fruitcount: a fruit-colour
+// word (the rule chosen from the cloud or named) or explicit rules, never both.
+
+#include <optional>
+#include <string>
+
+#include <pc/cli/tool.h>
+#include <pc/core/error.h>
+#include <pc/filters/fruit_color.h>
+#include <pc/pipeline/presets.h>
+
+namespace pc::tools {
+
+struct ColorOptions {
+    filters::ColorFilterParams rules;                ///< the preset's rule, then the rule options
+    std::optional<filters::FruitColorParams> word;  ///< the preset's word, or --fruit-color
+    bool rules_given = false, word_given = false, invert = false;
+
+    /// Starts from a preset's colour step.
+    void from_preset(const pipeline::ChainParams& chain) {
+        rules = chain.color.value_or(filters::ColorFilterParams{});
+        word = chain.color ? std::nullopt : chain.fruit_color;
+    }
+    /// Sets the chain's colour step (a fixed rule or a word); pc::InvalidArgument when a word and
+    /// rules were both given.
+    void apply(pipeline::ChainParams& chain) const {
+        const bool rules_given = this->rules_given || invert;
+        if (rules_given && word_given) {
+            throw InvalidArgument(
+                "give either --fruit-color or colour rules (--min-mean, --min-value, --hue, "
+                "--saturation, --value, --invert), not both");
+        }
+        chain.color.reset();
+        chain.fruit_color.reset();
+        if (word && !rules_given) {
+            chain.fruit_color = word;
+        } else {
+            chain.color = rules;
+            chain.color->invert = chain.color->invert || invert;
+        }
+    }
+};
+
+/// Binds --fruit-color, --min-mean, --min-value, --hue, --saturation, --value and --invert to
+/// `c`; each help text starts with `prefix`.
+inline void bind_color_options(cli::Tool& tool, ColorOptions& c, const std::string& prefix) {
+    tool.option(
+        "fruit-color", "auto",
+        [&c](const std::string& s) {
+            c.word = filters::FruitColorParams{.color = filters::parse_fruit_color(s)};
+            c.word_given = true;
+        },
+        prefix + filters::fruit_color_names() +
+            ": auto decides from the cloud (mask exports: mean RGB > 0.5; natural colours: "
+            "saturated and not foliage green); a word keeps that hue band; any keeps all");
+    const auto rule = [&](auto set) {
+        return [&c, set](const std::string& s) {
+            set(c.rules, s);
+            c.rules_given = true;
+        };
+    };
+    using P = filters::ColorFilterParams;
+    tool.option(
+        "min-mean", "off",
+        rule([](P& p, const std::string& s) { p.min_mean = cli::parse_double("min-mean", s); }),
+        prefix + "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
+    tool.option(
+        "min-value", "off",
+        rule([](P& p, const std::string& s) { p.min_value = cli::parse_double("min-value", s); }),
+        prefix + "keep iff HSV value max(R,G,B) > this (strict >)");
+    tool.option("hue", "off",
+                rule([](P& p, const std::string& s) { p.hue_deg = filters::parse_interval("hue", s); }),
+                prefix +
+                    "keep iff hue in LO:HI degrees, ends included; LO > HI wraps (300:30); grey "
+                    "never matches");
+    tool.option("saturation", "off",
+                rule([](P& p, const std::string& s) {
+                    p.saturation = filters::parse_interval("saturation", s);
+                }),
+                prefix + "keep iff HSV saturation in LO:HI (0..1), ends included");
+    tool.option(
+        "value", "off",
+        rule([](P& p, const std::string& s) { p.value = filters::parse_interval("value", s); }),
+        prefix + "keep iff HSV value in LO:HI (0..1), ends included");
+    tool.flag("invert", &c.invert, prefix + "keep the points the rules reject instead");
+}
+
+}  // namespace pc::tools
