@@ -44,6 +44,7 @@ while IFS='|' read -r id part family mode rs noise colour units args; do
       default) extra=() ;;
       word) [ $has_word = 1 ] || continue; extra=(--fruit-color "$colour") ;;
       nocolor) extra=(--no-color) ;;
+      cores) extra=(--rule cores) ;;
       *) extra=(--preset "$method") ;;
     esac
     start=$(date +%s.%N)

@@ -13,7 +13,7 @@
 namespace pc::tools {
 
 struct ColorOptions {
-    filters::ColorFilterParams rules;                ///< the preset's rule, then the rule options
+    filters::ColorFilterParams rules;               ///< the preset's rule, then the rule options
     std::optional<filters::FruitColorParams> word;  ///< the preset's word, or --fruit-color
     bool rules_given = false, word_given = false, invert = false;
 
@@ -61,28 +61,28 @@ inline void bind_color_options(cli::Tool& tool, ColorOptions& c, const std::stri
         };
     };
     using P = filters::ColorFilterParams;
-    tool.option(
-        "min-mean", "off",
-        rule([](P& p, const std::string& s) { p.min_mean = cli::parse_double("min-mean", s); }),
-        prefix + "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
-    tool.option(
-        "min-value", "off",
-        rule([](P& p, const std::string& s) { p.min_value = cli::parse_double("min-value", s); }),
-        prefix + "keep iff HSV value max(R,G,B) > this (strict >)");
-    tool.option("hue", "off",
-                rule([](P& p, const std::string& s) { p.hue_deg = filters::parse_interval("hue", s); }),
+    tool.option("min-mean", "off", rule([](P& p, const std::string& s) {
+                    p.min_mean = cli::parse_double("min-mean", s);
+                }),
+                prefix + "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
+    tool.option("min-value", "off", rule([](P& p, const std::string& s) {
+                    p.min_value = cli::parse_double("min-value", s);
+                }),
+                prefix + "keep iff HSV value max(R,G,B) > this (strict >)");
+    tool.option("hue", "off", rule([](P& p, const std::string& s) {
+                    p.hue_deg = filters::parse_interval("hue", s);
+                }),
                 prefix +
                     "keep iff hue in LO:HI degrees, ends included; LO > HI wraps (300:30); grey "
                     "never matches");
-    tool.option("saturation", "off",
-                rule([](P& p, const std::string& s) {
+    tool.option("saturation", "off", rule([](P& p, const std::string& s) {
                     p.saturation = filters::parse_interval("saturation", s);
                 }),
                 prefix + "keep iff HSV saturation in LO:HI (0..1), ends included");
-    tool.option(
-        "value", "off",
-        rule([](P& p, const std::string& s) { p.value = filters::parse_interval("value", s); }),
-        prefix + "keep iff HSV value in LO:HI (0..1), ends included");
+    tool.option("value", "off", rule([](P& p, const std::string& s) {
+                    p.value = filters::parse_interval("value", s);
+                }),
+                prefix + "keep iff HSV value in LO:HI (0..1), ends included");
     tool.flag("invert", &c.invert, prefix + "keep the points the rules reject instead");
 }
 

@@ -21,7 +21,12 @@ inline void bind_split_options(cli::Tool& tool,
             "paper: medians over all clusters; script: size median over clusters with more "
             "than --median-min-points, volume median over clusters within --size-band of it; "
             "cores: cut each cluster at the necks between its solid cores (no medians, no "
-            "k-means)");
+            "k-means); spheres: fruit centres found by normals voting, every point to its nearest "
+            "centre");
+    tool.option("fruit-radius", &p.fruit_radius,
+                prefix +
+                    "spheres rule: the fruit radius in the cloud's units, if known (0: "
+                    "estimated from the cloud)");
     tool.option("core-fraction", &p.core_fraction,
                 prefix + "cores rule: core depth as a fraction of the estimated fruit radius");
     tool.option("min-relative-size", &p.min_relative_size,

@@ -10,7 +10,7 @@ namespace pc::filters {
 namespace {
 
 constexpr std::pair<std::string_view, FruitColor> kWords[] = {
-    {"auto", FruitColor::kAuto},   {"mask", FruitColor::kMask},     {"red", FruitColor::kRed},
+    {"auto", FruitColor::kAuto},     {"mask", FruitColor::kMask},     {"red", FruitColor::kRed},
     {"orange", FruitColor::kOrange}, {"yellow", FruitColor::kYellow}, {"green", FruitColor::kGreen},
     {"purple", FruitColor::kPurple}, {"any", FruitColor::kAny}};
 
@@ -27,7 +27,9 @@ Hsv hsv(const io::Rgb& c) {
     Hsv out{-1, mx > 0 ? (mx - mn) / mx : 0.0, mx};
     if (mx > mn) {
         const double d = mx - mn;
-        double h = mx == r ? std::fmod((g - b) / d, 6.0) : mx == g ? (b - r) / d + 2 : (r - g) / d + 4;
+        double h = mx == r   ? std::fmod((g - b) / d, 6.0)
+                   : mx == g ? (b - r) / d + 2
+                             : (r - g) / d + 4;
         out.h = h * 60 < 0 ? h * 60 + 360 : h * 60;
     }
     return out;
@@ -67,8 +69,7 @@ void FruitColorParams::validate() const {
     }
 }
 
-FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours,
-                                    const FruitColorParams& p) {
+FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const FruitColorParams& p) {
     p.validate();
     const double s = p.min_saturation;
     switch (p.color) {
@@ -114,12 +115,15 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours,
     if (static_cast<double>(grey) >= 0.9 * static_cast<double>(seen)) {
         if (static_cast<double>(mid_grey) < 0.2 * static_cast<double>(grey)) {
             out.rule = ColorFilterParams{.min_mean = 0.5};
-            out.reason = "auto: mask colours (" + percent(grey, seen) + " grey, two-toned): mean RGB > 0.5";
+            out.reason =
+                "auto: mask colours (" + percent(grey, seen) + " grey, two-toned): mean RGB > 0.5";
             return out;
         }
-        out.reason = "auto: grey colours (" + percent(grey, seen) + " grey, not two-toned): no colour rule";
+        out.reason =
+            "auto: grey colours (" + percent(grey, seen) + " grey, not two-toned): no colour rule";
         out.warnings.push_back(
-            "the colours are grey and not a two-toned mask, so they cannot tell fruit from the rest: "
+            "the colours are grey and not a two-toned mask, so they cannot tell fruit from the "
+            "rest: "
             "no colour filter was applied; give --fruit-color or a colour rule if they can");
         return out;
     }

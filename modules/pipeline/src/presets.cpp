@@ -80,14 +80,15 @@ ChainParams preset(std::string_view name) {
     if (name == "dense") {
         // Beyond the paper (docs/dense-bunches.md): no length given, every one from the cloud.
         // eps = 4 x the point spacing (0.016 on a 4 mm voxel grid, the paper's 0.015 in kind);
-        // clusters are cut at the necks between their solid cores, hollow ones into spheres;
-        // clusters below a tenth of the median cluster are not fruit.
+        // fruit are the centres the surfaces' normals vote for (solid fruit: their outer
+        // layer), every point goes to its nearest centre (docs/robustness.md); clusters below a
+        // tenth of the median cluster are not fruit.
         // The colour rule from the cloud: the paper's mean RGB > 0.5 drops red, purple and
         // shaded fruit (docs/robustness.md).
         p.color.reset();
         p.fruit_color = filters::FruitColorParams{};
         p.eps = EpsRule{.mode = EpsRule::Mode::kSpacing, .factor = 4.0};
-        p.split = segmentation::RecursiveSplitParams{.rule = segmentation::SplitRule::kCores,
+        p.split = segmentation::RecursiveSplitParams{.rule = segmentation::SplitRule::kSpheres,
                                                      .core_fraction = 0.5,
                                                      .min_relative_size = 0.1};
         return p;

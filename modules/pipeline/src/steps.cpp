@@ -179,7 +179,11 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
     io::set_field(in, "label", r.labels);
     const std::string how =
-        p.rule == segmentation::SplitRule::kCores
+        p.rule == segmentation::SplitRule::kSpheres
+            ? "fruit centres found by normals voting (spacing " + format_number(r.spacing) +
+                  ", fruit radius " + format_number(r.fruit_radius) +
+                  (p.fruit_radius > 0 ? " given" : " estimated") + ")"
+        : p.rule == segmentation::SplitRule::kCores
             ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
                   ", estimated fruit radius " + format_number(r.fruit_radius) +
                   (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius)
@@ -193,6 +197,22 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                   std::to_string(r.cluster_count) + " clusters",
               {"recursive_split", n, n, {}},
               {}};
+    if (p.rule == segmentation::SplitRule::kSpheres) {
+        step.record.values = {{"spacing", r.spacing}, {"fruit_radius", r.fruit_radius}};
+        step.note = "recursive_split: " + std::to_string(r.peaks) + " " + how + ", " +
+                    std::to_string(r.cluster_count) + " clusters";
+        if (r.cluster_count > 0 && !(r.fruit_radius > 0)) {
+            step.warnings.push_back(
+                "recursive_split could not estimate the fruit radius (spacing " +
+                format_number(r.spacing) +
+                "): clusters were left whole; give --fruit-radius if you know the fruit's size");
+        } else if (r.cluster_count > 0 && r.peaks == 0) {
+            step.warnings.push_back(
+                "recursive_split found no fruit centre (fruit radius " +
+                format_number(r.fruit_radius) +
+                "): clusters were left whole; is the fruit radius right (--fruit-radius)?");
+        }
+    }
     if (p.rule == segmentation::SplitRule::kCores) {
         step.record.values = {{"spacing", r.spacing},
                               {"fruit_radius", r.fruit_radius},

@@ -9,6 +9,7 @@
 #include <pc/segmentation/core_split.h>
 #include <pc/segmentation/kmeans.h>
 #include <pc/segmentation/recursive_split.h>
+#include <pc/segmentation/sphere_vote.h>
 
 namespace pc::segmentation {
 
@@ -36,8 +37,10 @@ double aabb_volume(const XyzView& cloud, const std::vector<std::uint32_t>& membe
 
 namespace {
 
-constexpr std::pair<std::string_view, SplitRule> kRules[] = {
-    {"paper", SplitRule::kPaper}, {"script", SplitRule::kScript}, {"cores", SplitRule::kCores}};
+constexpr std::pair<std::string_view, SplitRule> kRules[] = {{"paper", SplitRule::kPaper},
+                                                             {"script", SplitRule::kScript},
+                                                             {"cores", SplitRule::kCores},
+                                                             {"spheres", SplitRule::kSpheres}};
 
 }  // namespace
 
@@ -55,6 +58,11 @@ void RecursiveSplitParams::validate() const {
     if (!(size_band >= 0)) {
         throw InvalidArgument("recursive_split: size_band must be >= 0, got " +
                               format_number(size_band));
+    }
+    if (!(fruit_radius >= 0 && std::isfinite(fruit_radius))) {
+        throw InvalidArgument(
+            "recursive_split: fruit_radius must be >= 0 (0: from the cloud), got " +
+            format_number(fruit_radius));
     }
     if (restarts < 1) {
         throw InvalidArgument("recursive_split: restarts must be >= 1, got " +
@@ -113,6 +121,23 @@ RecursiveSplitResult by_cores(const XyzView& points,
     return r;
 }
 
+RecursiveSplitResult by_spheres(const XyzView& points,
+                                std::vector<std::uint32_t> labels,
+                                const RecursiveSplitParams& params) {
+    SphereVoteParams vp{.fruit_radius = params.fruit_radius,
+                        .min_cluster_size = params.min_cluster_size,
+                        .min_relative_size = params.min_relative_size};
+    SphereVoteResult v = sphere_vote(points, std::move(labels), vp);
+    RecursiveSplitResult r;
+    r.labels = std::move(v.labels);
+    r.cluster_count = v.cluster_count;
+    r.size_threshold = r.volume_threshold = std::nan("");
+    r.spacing = v.spacing;
+    r.fruit_radius = v.fruit_radius;
+    r.peaks = v.peaks;
+    return r;
+}
+
 }  // namespace
 
 RecursiveSplitResult recursive_split(const XyzView& cloud,
@@ -121,6 +146,9 @@ RecursiveSplitResult recursive_split(const XyzView& cloud,
     params.validate();
     if (params.rule == SplitRule::kCores) {
         return by_cores(cloud, std::move(labels), params);
+    }
+    if (params.rule == SplitRule::kSpheres) {
+        return by_spheres(cloud, std::move(labels), params);
     }
     const std::size_t n = cloud.size;
     if (labels.size() != n) {

@@ -49,8 +49,9 @@ struct ChainParams {
 
 /// The named parameter set; throws pc::InvalidArgument for an unknown name.
 ///  - dense: beyond the paper, for unknown clouds: the colour rule chosen from the cloud
-///    (filters::choose_fruit_color), eps = 4 x the point spacing, the cores split rule (no
-///    medians), clusters below 0.1 x the median size dropped; pc_fruitcount's default
+///    (filters::choose_fruit_color), eps = 4 x the point spacing, the spheres split rule
+///    (segmentation::sphere_vote: no medians, lengths from the fruit radius it estimates),
+///    clusters below 0.1 x the median size dropped; pc_fruitcount's default
 ///  - paper-dense: the paper's dense setting (sections 2.3-2.5): eps 0.015, paper split rule
 ///  - paper-sparse: the paper's degraded-mask setting: eps 0.030, split only above 5x median volume
 ///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,

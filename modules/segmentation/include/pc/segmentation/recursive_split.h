@@ -11,14 +11,16 @@ namespace pc::segmentation {
 
 /// Which clusters define the "median cluster" the split thresholds are relative to.
 enum class SplitRule {
-    kPaper,   ///< medians of point count and AABB volume over all clusters (paper 2.3.3)
-    kScript,  ///< the author script: size median over clusters with > median_min_points points;
-              ///< volume median over clusters within ±size_band of that median size
-    kCores,   ///< not a median rule: each cluster is cut at the necks between its solid cores
-              ///< (core_split(), distance-transform watershed); no k-means
+    kPaper,    ///< medians of point count and AABB volume over all clusters (paper 2.3.3)
+    kScript,   ///< the author script: size median over clusters with > median_min_points points;
+               ///< volume median over clusters within ±size_band of that median size
+    kCores,    ///< not a median rule: each cluster is cut at the necks between its solid cores
+               ///< (core_split(), distance-transform watershed); no k-means
+    kSpheres,  ///< not a median rule: fruit centres found by normals voting (sphere_vote()), on
+               ///< solid and surface clouds alike; every point goes to its nearest centre
 };
 
-/// Parses "paper", "script" or "cores"; throws pc::InvalidArgument.
+/// Parses "paper", "script", "cores" or "spheres"; throws pc::InvalidArgument.
 [[nodiscard]] SplitRule parse_split_rule(const std::string& text);
 /// The name parse_split_rule() reads ("paper", "script", "cores"): for --help defaults.
 [[nodiscard]] std::string split_rule_name(SplitRule rule);
@@ -38,7 +40,8 @@ struct RecursiveSplitParams {
     std::uint64_t seed = 0;      ///< k-means seed; each cluster's engine also mixes its first index
     double core_fraction = 0.5;  ///< cores rule: core depth as a fraction of the fruit radius
     double min_relative_size =
-        0;  ///< cores rule: clusters below this × the median size become noise
+        0;                    ///< cores rule: clusters below this × the median size become noise
+    double fruit_radius = 0;  ///< spheres rule: the fruit radius if known (0: from the cloud)
 
     void validate() const;
 };
@@ -50,7 +53,8 @@ struct RecursiveSplitResult {
     double size_threshold = 0;    ///< points above which a cluster may split
     double volume_threshold = 0;  ///< AABB volume above which a cluster may split
     double spacing = 0;           ///< cores rule: median nearest-neighbour distance
-    double fruit_radius = 0;      ///< cores rule: estimated fruit radius
+    double fruit_radius = 0;      ///< cores and spheres rules: the fruit radius used
+    std::uint32_t peaks = 0;      ///< spheres rule: fruit centres found
     double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
 };
 

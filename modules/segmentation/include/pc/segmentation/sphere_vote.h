@@ -1,0 +1,57 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <pc/core/cloud.h>
+
+namespace pc::segmentation {
+
+/// Parameters of sphere_vote(). Lengths are multiples of the fruit radius R (estimated from the
+/// cloud, or the prior `fruit_radius`) or of the point spacing s, so the result does not change
+/// when the cloud is scaled or rotated.
+struct SphereVoteParams {
+    double fruit_radius = 0;       ///< prior R in the cloud's units; 0: estimated from the cloud
+    double normal_scale = 1.0;  ///< × R: the neighbourhood a voting normal is fitted to (>= 3 s)
+    double cell = 0.25;            ///< × R: the vote accumulator's cells
+    double peak_radius = 0.4;      ///< × R: votes within this of a peak support it
+    double peak_separation = 0.8;  ///< × R: peaks closer than this are one fruit
+    double min_support = 0.1;      ///< a peak needs this × the median peak's support
+    double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
+    std::uint32_t max_samples = 100000;  ///< points that fit normals and vote (a strided sample)
+    std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
+    double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
+
+    void validate() const;
+};
+
+struct SphereVoteResult {
+    std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
+    std::uint32_t cluster_count = 0;
+    std::uint32_t peaks = 0;    ///< fruit centres found
+    double spacing = 0;         ///< s: median nearest-neighbour distance of the clustered points
+    double fruit_radius = 0;    ///< R used (the prior, or the estimate; 0 when none was possible)
+    bool estimated = false;     ///< R was estimated from the cloud
+    bool solid = false;         ///< solid fruit (their outer layer voted), else surfaces
+};
+
+/// Counts fruit as spheres, on solid and surface clouds alike, without medians over clusters:
+///  1. Normals: a plane fitted (PCA) to each sampled point's neighbours of the same cluster
+///     within normal_scale × R; its weight is 1 − λ₁/λ₂ (flat surroundings vote, the isotropic
+///     inside of a solid fruit does not).
+///  2. R, unless given: where the normal lines of nearby points meet (a sphere's normals all
+///     pass through its centre, at distance R): the mode of those distances over many pairs,
+///     starting from the median cluster size and refitted once at the scale it gives.
+///  3. Votes: each point votes for the centres at p ± R·n (the sign of a normal is unknown; the
+///     wrong side scatters over a sphere of 2R). Peaks of the vote density (cells of cell × R,
+///     local maxima of 3×3×3 sums, refined by mean shift within peak_radius × R), strongest first,
+///     at least peak_separation × R apart and with min_support × the median support, are fruit.
+///  4. Every clustered point goes to the peak nearest relative to the peak's radius (the median
+///     distance of its voters), when within `reach` of it; points far from every peak keep their
+///     DBSCAN cluster as one more part. Pieces of one fruit that DBSCAN separated join their peak.
+/// Label 0 stays noise; non-finite points become noise. Deterministic.
+[[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
+                                           std::vector<std::uint32_t> labels,
+                                           const SphereVoteParams& params);
+
+}  // namespace pc::segmentation

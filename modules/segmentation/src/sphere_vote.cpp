@@ -1,0 +1,670 @@
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <unordered_map>
+
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+
+#include <pc/core/error.h>
+#include <pc/core/stats.h>
+#include <pc/search/grid.h>
+#include <pc/search/spacing.h>
+#include <pc/segmentation/recursive_split.h>
+#include <pc/segmentation/sphere_vote.h>
+
+namespace pc::segmentation {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+V3 vec(const pcl::PointXYZ& p) { return {p.x, p.y, p.z}; }
+pcl::PointXYZ point(const V3& v) {
+    return {static_cast<float>(v.x()), static_cast<float>(v.y()), static_cast<float>(v.z())};
+}
+
+/// The sampled points: positions in the cloud, their view and their DBSCAN labels.
+struct Sample {
+    std::vector<std::uint32_t> at;
+    XyzView view;
+    std::vector<std::uint32_t> label;
+};
+
+/// Unit normals and their weights 1 − λ₁/λ₂ (0: no normal) of the sampled points.
+struct Normals {
+    std::vector<V3> n;
+    std::vector<float> w;
+    std::vector<float> offset;  ///< |neighbourhood centroid − point| / h (half a ball: 3/8)
+    double scale = 0;
+};
+
+/// Normals of every `every`-th sampled point (the others get weight 0), from all the sample's points.
+Normals fit_normals(const Sample& s, double h, std::size_t every = 1) {
+    const search::Grid grid(s.view, h);
+    Normals out{std::vector<V3>(s.view.size, V3::Zero()), std::vector<float>(s.view.size, 0.0f),
+                std::vector<float>(s.view.size, 0.0f), h};
+#pragma omp parallel for schedule(dynamic, 256)
+    for (std::int64_t ii = 0; ii < static_cast<std::int64_t>(s.view.size); ii += every) {
+        const auto i = static_cast<std::uint32_t>(ii);
+        const pcl::PointXYZ p = s.view[i];
+        const V3 o = vec(p);
+        V3 sum = V3::Zero();
+        Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+        int n = 0;
+        grid.for_each_within(p, h, [&](std::uint32_t j, double) {
+            if (s.label[j] == s.label[i]) {
+                const V3 q = vec(s.view[j]) - o;
+                sum += q;
+                m += q * q.transpose();
+                ++n;
+            }
+        });
+        if (n < 6) {
+            continue;
+        }
+        const V3 c = sum / n;
+        const Eigen::Matrix3d cov = m / n - c * c.transpose();
+        const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+        const V3 l = es.eigenvalues();
+        if (!(l(1) > 0)) {
+            continue;
+        }
+        out.n[i] = es.eigenvectors().col(0);
+        out.w[i] = static_cast<float>(std::clamp(1.0 - l(0) / l(1), 0.0, 1.0));
+        out.offset[i] = static_cast<float>(c.norm() / h);
+    }
+    return out;
+}
+
+/// Every `stride`-th of the points `at` (positions in `points`), with their labels. The view
+/// points into `at`: rebuild it (points.subset) after copying or moving the sample.
+Sample thinned(const XyzView& points,
+               const std::vector<std::uint32_t>& at,
+               const std::vector<std::uint32_t>& labels,
+               std::size_t stride) {
+    Sample s;
+    for (std::size_t k = 0; k < at.size(); k += std::max<std::size_t>(stride, 1)) {
+        s.at.push_back(at[k]);
+        s.label.push_back(labels[at[k]]);
+    }
+    s.view = points.subset(s.at);
+    return s;
+}
+
+/// The outer layer of solid fruit (neighbourhoods within 3 spacings lying to one side: half a
+/// ball has offset 3/8): a surface the rest of the method treats like any other.
+Sample shell_of(const XyzView& points,
+                const Sample& s,
+                const std::vector<std::uint32_t>& labels,
+                double spacing) {
+    const Normals nb = fit_normals(s, 3 * spacing);
+    std::vector<std::uint32_t> outer;
+    for (std::size_t i = 0; i < s.view.size; ++i) {
+        if (nb.offset[i] > 0.2f) {
+            outer.push_back(s.at[i]);
+        }
+    }
+    return thinned(points, outer, labels, 1);
+}
+
+bool differs(double a, double b) { return std::abs(std::log(a / b)) > std::log(1.3); }
+
+/// A solid cloud: more than 15 % of the points with a neighbourhood have one that is isotropic
+/// (the inside of solid fruit); surfaces, even noisy ones, stay under 6 % down to 2 spacings a
+/// radius.
+bool is_solid(const Normals& nm) {
+    std::size_t with = 0, iso = 0;
+    for (std::size_t i = 0; i < nm.w.size(); ++i) {
+        if (nm.offset[i] > 0 || nm.w[i] > 0) {
+            ++with;
+            iso += nm.w[i] < 0.3f;
+        }
+    }
+    return with > 0 && static_cast<double>(iso) > 0.15 * static_cast<double>(with);
+}
+
+/// The mode of positive values on a log scale (bins of 5 %, smoothed over five), refined as the
+/// median of the values within 15 % of it; 0 without values.
+double log_mode(std::vector<double>& v) {
+    if (v.empty()) {
+        return 0;
+    }
+    const double lo = std::log(*std::min_element(v.begin(), v.end()));
+    std::vector<double> bins;
+    for (double x : v) {
+        const auto b = static_cast<std::size_t>((std::log(x) - lo) / 0.05);
+        if (b >= bins.size()) {
+            bins.resize(b + 1, 0.0);
+        }
+        bins[b] += 1;
+    }
+    std::size_t best = 0;
+    double best_sum = -1;
+    for (std::size_t b = 0; b < bins.size(); ++b) {
+        double sum = 0;
+        for (std::size_t k = b >= 2 ? b - 2 : 0; k <= std::min(bins.size() - 1, b + 2); ++k) {
+            sum += bins[k];
+        }
+        if (sum > best_sum) {
+            best_sum = sum;
+            best = b;
+        }
+    }
+    const double mode = std::exp(lo + 0.05 * (static_cast<double>(best) + 0.5));
+    std::vector<double> near;
+    for (double x : v) {
+        if (std::abs(std::log(x / mode)) < 0.15) {
+            near.push_back(x);
+        }
+    }
+    return near.empty() ? mode : median(near);
+}
+
+/// Where the normal lines of nearby points (same cluster, h/2..h apart, both with clear normals)
+/// meet: on a sphere both at distance R. The mode of those distances; 0 with fewer than 50 pairs.
+double radius_from_normals(const Sample& s, const Normals& nm) {
+    const double h = nm.scale;
+    const search::Grid grid(s.view, h);
+    const std::size_t stride = std::max<std::size_t>(1, s.view.size / 20000);
+    std::vector<double> dist;
+    const double min_sin2 = std::pow(std::sin(5.0 * 3.141592653589793 / 180), 2);
+    for (std::size_t i = 0; i < s.view.size; i += stride) {
+        if (nm.w[i] < 0.5) {
+            continue;
+        }
+        const pcl::PointXYZ p = s.view[i];
+        int pairs = 0;
+        grid.for_each_within(p, h, [&](std::uint32_t j, double d2) {
+            if (pairs >= 4 || s.label[j] != s.label[i] || nm.w[j] < 0.5 || d2 < 0.25 * h * h) {
+                return;
+            }
+            const V3 w0 = vec(p) - vec(s.view[j]);
+            const V3 &a = nm.n[i], &b = nm.n[j];
+            const double ab = a.dot(b), denom = 1 - ab * ab;
+            if (denom < min_sin2) {
+                return;
+            }
+            const double d = a.dot(w0), e = b.dot(w0);
+            const double t = (ab * e - d) / denom, u = (e - ab * d) / denom;
+            const double gap = (w0 + t * a - u * b).norm();
+            if (gap < 0.2 * std::abs(t) && std::abs(std::abs(t) - std::abs(u)) < 0.2 * std::abs(t)) {
+                dist.push_back(0.5 * (std::abs(t) + std::abs(u)));
+                ++pairs;
+            }
+        });
+    }
+    return dist.size() < 50 ? 0.0 : log_mode(dist);
+}
+
+/// The median over clusters (10 sampled points or more) of the RMS distance from their centroid:
+/// a first, rough fruit size.
+double rough_size(const Sample& s) {
+    std::unordered_map<std::uint32_t, std::pair<V3, std::vector<V3>>> by;
+    for (std::size_t i = 0; i < s.view.size; ++i) {
+        by[s.label[i]].second.push_back(vec(s.view[i]));
+    }
+    std::vector<double> rms;
+    for (auto& [label, c] : by) {
+        if (c.second.size() < 10) {
+            continue;
+        }
+        V3 mean = V3::Zero();
+        for (const V3& p : c.second) {
+            mean += p;
+        }
+        mean /= static_cast<double>(c.second.size());
+        double sum = 0;
+        for (const V3& p : c.second) {
+            sum += (p - mean).squaredNorm();
+        }
+        rms.push_back(std::sqrt(sum / static_cast<double>(c.second.size())));
+    }
+    return rms.empty() ? 0.0 : median(rms);
+}
+
+std::uint64_t key_of(std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto u = [](std::int64_t v) {
+        return static_cast<std::uint64_t>(v + (std::int64_t{1} << 20)) & 0x1fffff;
+    };
+    return u(x) | (u(y) << 21) | (u(z) << 42);
+}
+
+struct Peak {
+    V3 centre;
+    double support = 0;
+    double radius = 0;
+};
+
+/// Votes sorted into cubic cells (flat arrays, cells found by binary search), and the peaks of
+/// their density.
+class Votes {
+public:
+    Votes(double cell, const V3& origin) : cell_(cell), origin_(origin) {}
+
+    void add(const V3& at, float w, std::uint32_t voter) {
+        const std::array<std::int64_t, 3> c{coord(at.x(), 0), coord(at.y(), 1), coord(at.z(), 2)};
+        if (std::abs(c[0]) >= (1 << 20) || std::abs(c[1]) >= (1 << 20) ||
+            std::abs(c[2]) >= (1 << 20)) {
+            return;  // beyond the key's range: far outside the cloud
+        }
+        entries_.push_back({key_of(c[0], c[1], c[2]), at.cast<float>(), w, voter});
+    }
+
+    /// Sorts the votes into their cells; call once, after the last add().
+    void finish() {
+        std::sort(entries_.begin(), entries_.end(), [](const Entry& a, const Entry& b) {
+            return a.key < b.key || (a.key == b.key && a.voter < b.voter);
+        });
+        for (std::uint32_t v = 0; v < entries_.size(); ++v) {
+            if (keys_.empty() || keys_.back() != entries_[v].key) {
+                keys_.push_back(entries_[v].key);
+                begin_.push_back(v);
+                sum_.push_back(0);
+            }
+            sum_.back() += entries_[v].w;
+        }
+        begin_.push_back(static_cast<std::uint32_t>(entries_.size()));
+    }
+
+    /// Fruit centres: local maxima of the 3x3x3 cell sums, refined by mean shift within `radius`,
+    /// sharp (most of the votes within 2 × radius lie within radius), `separation` apart,
+    /// strongest first, each supported by at least min_support × the typical fruit's votes that
+    /// no stronger fruit explains.
+    std::vector<Peak> peaks(double radius,
+                            double separation,
+                            double min_support,
+                            const Sample& s,
+                            double fruit_radius) const {
+        std::vector<double> box(keys_.size(), 0.0);
+        for (std::size_t c = 0; c < keys_.size(); ++c) {
+            for_cells(keys_[c], 1, [&](std::size_t n) { box[c] += sum_[n]; });
+        }
+        std::vector<std::pair<double, std::size_t>> candidates;
+        for (std::size_t c = 0; c < keys_.size(); ++c) {
+            bool top = true;
+            for_cells(keys_[c], 1, [&](std::size_t n) {
+                top = top && (box[n] < box[c] || (box[n] == box[c] && n >= c));
+            });
+            if (top) {
+                candidates.emplace_back(box[c], c);
+            }
+        }
+        std::sort(candidates.begin(), candidates.end(), [](const auto& a, const auto& b) {
+            return a.first > b.first || (a.first == b.first && a.second < b.second);
+        });
+        std::vector<Peak> found;
+        for (const auto& [b, c] : candidates) {
+            Peak p = refine(c, radius);
+            // Sharp: most of the votes within 2 radius are within radius (a true centre), not a
+            // stretch of the diffuse shell the wrong-side votes make.
+            if (p.support > 0 && p.support >= 0.45 * gather(p.centre, 2 * radius)) {
+                found.push_back(p);
+            }
+        }
+        std::sort(found.begin(), found.end(),
+                  [](const Peak& a, const Peak& b) { return a.support > b.support; });
+        if (found.empty()) {
+            return found;
+        }
+        // The typical fruit: the median support of the peaks above a tenth of the strongest.
+        std::vector<double> strong;
+        for (const Peak& p : found) {
+            if (p.support >= 0.1 * found.front().support) {
+                strong.push_back(p.support);
+            }
+        }
+        const double need = min_support * median(strong);
+        // Strongest first; each accepted fruit explains away the points on and inside its sphere,
+        // whose votes (the wrong-side shell, scattered normals) then support nothing else.
+        const search::Grid grid(s.view, 1.7 * fruit_radius);
+        std::vector<std::uint8_t> explained(s.view.size, 0);
+        std::vector<Peak> kept;
+        for (const Peak& candidate : found) {
+            bool apart = true;
+            for (const Peak& q : kept) {
+                apart = apart && (candidate.centre - q.centre).norm() >= separation;
+            }
+            if (!apart) {
+                continue;
+            }
+            Peak p = candidate;
+            p.support = 0;
+            for_votes_within(p.centre, radius, [&](const Entry& e) {
+                p.support += explained[e.voter] ? 0.0 : e.w;
+            });
+            if (p.support < need) {
+                continue;
+            }
+            p.radius = voter_radius(p.centre, radius, s, fruit_radius);
+            grid.for_each_within(point(p.centre), std::min(1.15 * p.radius, 1.7 * fruit_radius),
+                                 [&](std::uint32_t j, double) { explained[j] = 1; });
+            kept.push_back(p);
+        }
+        return kept;
+    }
+
+private:
+    struct Entry {
+        std::uint64_t key;
+        Eigen::Vector3f at;
+        float w;
+        std::uint32_t voter;
+    };
+
+    [[nodiscard]] std::int64_t coord(double v, int a) const {
+        return static_cast<std::int64_t>(std::floor((v - origin_(a)) / cell_));
+    }
+    static std::array<std::int64_t, 3> unkey(std::uint64_t k) {
+        const auto v = [](std::uint64_t u) {
+            return static_cast<std::int64_t>(u & 0x1fffff) - (std::int64_t{1} << 20);
+        };
+        return {v(k), v(k >> 21), v(k >> 42)};
+    }
+    /// f(cell) for the existing cells within `reach` cells of cell key k.
+    template <class F>
+    void for_cells(std::uint64_t k, int reach, F&& f) const {
+        const auto c = unkey(k);
+        for (int dx = -reach; dx <= reach; ++dx) {
+            for (int dy = -reach; dy <= reach; ++dy) {
+                for (int dz = -reach; dz <= reach; ++dz) {
+                    const std::uint64_t n = key_of(c[0] + dx, c[1] + dy, c[2] + dz);
+                    const auto it = std::lower_bound(keys_.begin(), keys_.end(), n);
+                    if (it != keys_.end() && *it == n) {
+                        f(static_cast<std::size_t>(it - keys_.begin()));
+                    }
+                }
+            }
+        }
+    }
+    template <class F>
+    void for_votes_within(const V3& at, double radius, F&& f) const {
+        const int reach = static_cast<int>(std::ceil(radius / cell_));
+        const Eigen::Vector3f a = at.cast<float>();
+        const float r2 = static_cast<float>(radius * radius);
+        for_cells(key_of(coord(at.x(), 0), coord(at.y(), 1), coord(at.z(), 2)), reach,
+                  [&](std::size_t c) {
+                      for (std::uint32_t v = begin_[c]; v < begin_[c + 1]; ++v) {
+                          if ((entries_[v].at - a).squaredNorm() <= r2) {
+                              f(entries_[v]);
+                          }
+                      }
+                  });
+    }
+    [[nodiscard]] double gather(const V3& at, double radius) const {
+        double sum = 0;
+        for_votes_within(at, radius, [&](const Entry& e) { sum += e.w; });
+        return sum;
+    }
+    /// Mean shift from the cell's 3x3x3 box to the weighted mean of the votes within `radius`.
+    [[nodiscard]] Peak refine(std::size_t c, double radius) const {
+        V3 at = V3::Zero();
+        double sum = 0;
+        for_cells(keys_[c], 1, [&](std::size_t n) {
+            for (std::uint32_t v = begin_[n]; v < begin_[n + 1]; ++v) {
+                at += entries_[v].w * entries_[v].at.cast<double>();
+                sum += entries_[v].w;
+            }
+        });
+        Peak p{at / sum, sum, 0};
+        for (int it = 0; it < 4; ++it) {
+            V3 next = V3::Zero();
+            double w = 0;
+            for_votes_within(p.centre, radius, [&](const Entry& e) {
+                next += e.w * e.at.cast<double>();
+                w += e.w;
+            });
+            if (!(w > 0)) {
+                return {p.centre, 0, 0};
+            }
+            p = {next / w, w, 0};
+        }
+        return p;
+    }
+    /// The median distance from the centre of the voters whose votes are within `radius` of it,
+    /// clamped to 0.7..1.4 R.
+    [[nodiscard]] double voter_radius(const V3& centre,
+                                      double radius,
+                                      const Sample& s,
+                                      double fruit_radius) const {
+        std::vector<double> d;
+        for_votes_within(centre, radius, [&](const Entry& e) {
+            d.push_back((vec(s.view[e.voter]) - centre).norm());
+        });
+        const double r = d.empty() ? fruit_radius : median(d);
+        return std::clamp(r, 0.7 * fruit_radius, 1.4 * fruit_radius);
+    }
+
+    double cell_;
+    V3 origin_;
+    std::vector<Entry> entries_;       ///< sorted by cell after finish()
+    std::vector<std::uint64_t> keys_;  ///< the occupied cells, ascending
+    std::vector<std::uint32_t> begin_;  ///< cell c's votes: entries_[begin_[c], begin_[c + 1])
+    std::vector<double> sum_;           ///< cell c's total weight
+};
+
+/// True when the points are flat (a leaf, the ground): the smallest variance under 1 % of the
+/// middle one.
+bool flat(const XyzView& points, const std::vector<std::uint32_t>& at) {
+    if (at.size() < 4) {
+        return false;
+    }
+    V3 mean = V3::Zero();
+    for (auto i : at) {
+        mean += vec(points[i]);
+    }
+    mean /= static_cast<double>(at.size());
+    Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
+    for (auto i : at) {
+        const V3 q = vec(points[i]) - mean;
+        m += q * q.transpose();
+    }
+    const V3 l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues();
+    return l(0) < 0.01 * l(1);
+}
+
+/// Every clustered point to the peak nearest relative to its radius, within `reach` (label
+/// 1 + the peak); the rest keep their cluster (label 1 + peaks + the cluster's), unless that rest
+/// is flat (leaves, ground: no fruit; label 0). In place.
+void assign(const XyzView& points,
+            const std::vector<std::uint32_t>& members,
+            std::vector<std::uint32_t>& labels,
+            const std::vector<Peak>& peaks,
+            double reach,
+            double R) {
+    const double cell = reach * 1.4 * R;
+    const V3 origin = peaks.front().centre;
+    const auto cell_of = [&](const V3& p, int a) {
+        return static_cast<std::int64_t>(std::floor((p(a) - origin(a)) / cell));
+    };
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near;
+    for (std::uint32_t j = 0; j < peaks.size(); ++j) {
+        const V3& c = peaks[j].centre;
+        near[key_of(cell_of(c, 0), cell_of(c, 1), cell_of(c, 2))].push_back(j);
+    }
+    const auto count = static_cast<std::uint32_t>(peaks.size());
+    std::vector<std::uint32_t>& out = labels;  // each point reads its own label, then writes it
+#pragma omp parallel for schedule(static)
+    for (std::int64_t kk = 0; kk < static_cast<std::int64_t>(members.size()); ++kk) {
+        const std::uint32_t i = members[static_cast<std::size_t>(kk)];
+        const V3 p = vec(points[i]);
+        double best = reach;
+        std::uint32_t to = count + labels[i];
+        const std::int64_t cx = cell_of(p, 0), cy = cell_of(p, 1), cz = cell_of(p, 2);
+        for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = near.find(key_of(cx + dx, cy + dy, cz + dz));
+                    if (it == near.end()) {
+                        continue;
+                    }
+                    for (auto j : it->second) {
+                        const double d = (p - peaks[j].centre).norm() / peaks[j].radius;
+                        if (d < best || (d == best && j + 1 < to)) {
+                            best = d;
+                            to = j + 1;
+                        }
+                    }
+                }
+            }
+        }
+        out[i] = to;
+    }
+    std::map<std::uint32_t, std::vector<std::uint32_t>> rest;
+    for (auto i : members) {
+        if (out[i] > count) {
+            rest[out[i]].push_back(i);
+        }
+    }
+    for (const auto& [label, at] : rest) {
+        if (flat(points, at)) {
+            for (auto i : at) {
+                out[i] = 0;
+            }
+        }
+    }
+}
+
+/// Drops clusters below min_size points or min_relative × the median cluster size (to 0) and
+/// numbers the rest 1.. by decreasing size.
+std::uint32_t finish(std::vector<std::uint32_t>& labels, std::uint32_t min_size, double min_relative) {
+    std::uint32_t count = renumber_by_size(labels, min_size);
+    if (min_relative > 0 && count > 0) {
+        std::vector<double> size(count + 1, 0.0);
+        for (auto l : labels) {
+            size[l] += 1;
+        }
+        std::vector<double> sizes(size.begin() + 1, size.end());
+        const double cut = min_relative * median(sizes);
+        for (auto& l : labels) {
+            if (l != 0 && size[l] < cut) {
+                l = 0;
+            }
+        }
+        count = renumber_by_size(labels, 0);
+    }
+    return count;
+}
+
+}  // namespace
+
+void SphereVoteParams::validate() const {
+    const auto positive = [](double v, const char* name) {
+        if (!(v > 0 && std::isfinite(v))) {
+            throw InvalidArgument(std::string("sphere_vote: ") + name + " must be > 0");
+        }
+    };
+    if (!(fruit_radius >= 0 && std::isfinite(fruit_radius))) {
+        throw InvalidArgument("sphere_vote: fruit_radius must be >= 0 (0: estimate)");
+    }
+    positive(normal_scale, "normal_scale");
+    positive(cell, "cell");
+    positive(peak_radius, "peak_radius");
+    positive(peak_separation, "peak_separation");
+    positive(reach, "reach");
+    if (!(min_support >= 0 && min_support <= 1)) {
+        throw InvalidArgument("sphere_vote: min_support must be in [0, 1]");
+    }
+    if (max_samples < 100) {
+        throw InvalidArgument("sphere_vote: max_samples must be >= 100");
+    }
+    if (!(min_relative_size >= 0 && min_relative_size < 1)) {
+        throw InvalidArgument("sphere_vote: min_relative_size must be in [0, 1)");
+    }
+}
+
+SphereVoteResult sphere_vote(const XyzView& points,
+                             std::vector<std::uint32_t> labels,
+                             const SphereVoteParams& params) {
+    params.validate();
+    if (labels.size() != points.size) {
+        throw InvalidArgument("sphere_vote: labels must be one per point (" +
+                              std::to_string(points.size) + "), got " +
+                              std::to_string(labels.size()));
+    }
+    SphereVoteResult r;
+    std::vector<std::uint32_t> members;
+    for (std::uint32_t i = 0; i < points.size; ++i) {
+        if (labels[i] != 0 && !is_finite(points[i])) {
+            labels[i] = 0;
+        }
+        if (labels[i] != 0) {
+            members.push_back(i);
+        }
+    }
+    // Numbers and filters the parts (the clusters, whole, when no fruit centre was found).
+    const auto done = [&] {
+        r.cluster_count = finish(labels, params.min_cluster_size, params.min_relative_size);
+        r.labels = std::move(labels);
+        return r;
+    };
+    if (members.size() < 10) {
+        return done();
+    }
+    r.spacing = search::median_spacing(points.subset(members));
+    const Sample all = thinned(points, members, labels, (members.size() + params.max_samples - 1) /
+                                                            params.max_samples);
+    const double ss = search::median_spacing(all.view);
+    const double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all);
+    if (!(ss > 0) || !(first > 0)) {
+        return done();
+    }
+    // Neighbourhoods of at least 3 spacings; the points thinned so that one holds about 50.
+    const auto normals = [&](const Sample& base, double h, Sample& used) {
+        h = std::max(h, 3 * ss);
+        const auto stride = static_cast<std::size_t>(std::pow(h / (6 * ss), 2));
+        used = stride > 1 ? thinned(points, base.at, labels, stride) : base;
+        used.view = points.subset(used.at);
+        return fit_normals(used, h);
+    };
+    // Solid fruit (an isotropic inside, seen at half the fruit's size, in 5000 places) are reduced
+    // to their outer layer: from here on every cloud is a surface.
+    r.solid = is_solid(fit_normals(all, std::max(0.5 * first, 3 * ss),
+                                   std::max<std::size_t>(1, all.at.size() / 5000)));
+    Sample s;
+    const Sample surface = r.solid ? shell_of(points, all, labels, ss) : all;
+    if (surface.at.size() < 10) {
+        return done();
+    }
+    double R = params.fruit_radius;
+    if (!(R > 0)) {
+        // Normals that measure R see half of it (larger neighbourhoods span a bunch and feed
+        // back into ever larger estimates); refitted once at the scale the first estimate gives.
+        Normals nm = normals(surface, 0.5 * first, s);
+        R = radius_from_normals(s, nm);
+        if (R > 0 && differs(R, first)) {
+            nm = normals(surface, 0.5 * R, s);
+            const double again = radius_from_normals(s, nm);
+            R = again > 0 ? again : R;
+        }
+        if (!(R > 0)) {
+            return done();
+        }
+        r.estimated = true;
+    }
+    r.fruit_radius = R;
+
+    // Each point votes for the centres at p ± R n; the peaks are the fruit.
+    const Normals nm = normals(surface, params.normal_scale * R, s);
+    Votes votes(params.cell * R, vec(s.view[0]) - V3::Constant(4 * R));
+    for (std::uint32_t i = 0; i < s.view.size; ++i) {
+        if (nm.w[i] > 0.2f) {
+            const V3 p = vec(s.view[i]);
+            votes.add(p + R * nm.n[i], nm.w[i], i);
+            votes.add(p - R * nm.n[i], nm.w[i], i);
+        }
+    }
+    votes.finish();
+    const std::vector<Peak> peaks = votes.peaks(params.peak_radius * R, params.peak_separation * R,
+                                                params.min_support, s, R);
+    r.peaks = static_cast<std::uint32_t>(peaks.size());
+    if (peaks.empty()) {
+        return done();
+    }
+    assign(points, members, labels, peaks, params.reach, R);
+    return done();
+}
+
+}  // namespace pc::segmentation
