@@ -101,6 +101,43 @@ TEST(PcEval, WellSeparatedExplicitSceneThroughThePipedChainScoresOne) {
     EXPECT_EQ(j["split"], 0);
 }
 
+TEST(PcFruitcount, DefaultCountsSamplingKindsColoursAndUnits) {
+    // A few conditions of docs/robustness.md (its tune part), small: the default command, no
+    // per-scene parameter, scored against the generator's truth. The fruit present in the cloud
+    // are the oracle (a fruit the export lost cannot be counted).
+    const std::string canopy = " --fruit-count 40 --canopy 0.45,0.45,0.4 --radius-spread 0.2";
+    const std::vector<std::string> scenes = {
+        // solid lattice, touching plums, 5 spacings a radius, red
+        "--species plum --mode explicit --voxel 0.0034 --fruit-rgb 190,35,40",
+        // NeRF-like visible surfaces, 3 spacings a radius, mask colours
+        "--species plum --mode implicit --voxel 0.0057 --colors mask",
+        // structure from motion in millimetres, dark purple, shaded
+        "--species apple --mode sfm --voxel 0.0044 --fruit-rgb 75,30,65 --shading 0.6 "
+        "--scale 1000",
+        // cherries interpenetrating by up to 10 %, random in the volume, orange, normalised
+        "--species plum --fruit-radius 0.012 --bunch-min 2 --bunch-max 6 --touch-gap 0.001 "
+        "--overlap 0.1 --mode volume --voxel 0.0024 --fruit-rgb 235,140,45 --scale 0.45 "
+        "--offset 0.1,-0.05,0.2",
+        // random surface points jittered by 10 % of the radius, 8 spacings a radius
+        "--species peach --mode surface --voxel 0.0044 --noise 0.1 --fruit-rgb 190,35,40",
+    };
+    for (const std::string& scene : scenes) {
+        TempDir dir;
+        const RunResult r =
+            run_shell("@pc_synth " + scene + canopy + " --truth " + dir.file("t.json") +
+                      " | @pc_fruitcount --cloud " + dir.file("l.pcd") + " --plain");
+        ASSERT_EQ(r.code, 0) << scene << ": " << r.err;
+        const auto truth = nlohmann::json::parse(slurp(dir.file("t.json")));
+        const int present = truth["fruit_present"];
+        const RunResult e = run_shell("@pc_eval -i " + dir.file("l.pcd") + " --truth " +
+                                      dir.file("t.json") + " --gt " + std::to_string(present));
+        ASSERT_EQ(e.code, 0) << e.err;
+        const auto j = nlohmann::json::parse(e.out);
+        EXPECT_NEAR(std::stoi(r.out), present, 0.1 * present) << scene;
+        EXPECT_GE(j["f1"].get<double>(), 0.9) << scene;
+    }
+}
+
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.
 std::string labelled(const std::vector<int>& labels, bool with_gt = true) {
     std::string s = pcd_header(with_gt ? "x y z label gt_instance" : "x y z label",

@@ -41,7 +41,8 @@ struct Normals {
     double scale = 0;
 };
 
-/// Normals of every `every`-th sampled point (the others get weight 0), from all the sample's points.
+/// Normals of every `every`-th sampled point (the others get weight 0), from all the sample's
+/// points.
 Normals fit_normals(const Sample& s, double h, std::size_t every = 1) {
     const search::Grid grid(s.view, h);
     Normals out{std::vector<V3>(s.view.size, V3::Zero()), std::vector<float>(s.view.size, 0.0f),
@@ -190,7 +191,8 @@ double radius_from_normals(const Sample& s, const Normals& nm) {
             const double d = a.dot(w0), e = b.dot(w0);
             const double t = (ab * e - d) / denom, u = (e - ab * d) / denom;
             const double gap = (w0 + t * a - u * b).norm();
-            if (gap < 0.2 * std::abs(t) && std::abs(std::abs(t) - std::abs(u)) < 0.2 * std::abs(t)) {
+            if (gap < 0.2 * std::abs(t) &&
+                std::abs(std::abs(t) - std::abs(u)) < 0.2 * std::abs(t)) {
                 dist.push_back(0.5 * (std::abs(t) + std::abs(u)));
                 ++pairs;
             }
@@ -332,9 +334,8 @@ public:
             }
             Peak p = candidate;
             p.support = 0;
-            for_votes_within(p.centre, radius, [&](const Entry& e) {
-                p.support += explained[e.voter] ? 0.0 : e.w;
-            });
+            for_votes_within(p.centre, radius,
+                             [&](const Entry& e) { p.support += explained[e.voter] ? 0.0 : e.w; });
             if (p.support < need) {
                 continue;
             }
@@ -439,8 +440,8 @@ private:
 
     double cell_;
     V3 origin_;
-    std::vector<Entry> entries_;       ///< sorted by cell after finish()
-    std::vector<std::uint64_t> keys_;  ///< the occupied cells, ascending
+    std::vector<Entry> entries_;        ///< sorted by cell after finish()
+    std::vector<std::uint64_t> keys_;   ///< the occupied cells, ascending
     std::vector<std::uint32_t> begin_;  ///< cell c's votes: entries_[begin_[c], begin_[c + 1])
     std::vector<double> sum_;           ///< cell c's total weight
 };
@@ -529,7 +530,9 @@ void assign(const XyzView& points,
 
 /// Drops clusters below min_size points or min_relative × the median cluster size (to 0) and
 /// numbers the rest 1.. by decreasing size.
-std::uint32_t finish(std::vector<std::uint32_t>& labels, std::uint32_t min_size, double min_relative) {
+std::uint32_t finish(std::vector<std::uint32_t>& labels,
+                     std::uint32_t min_size,
+                     double min_relative) {
     std::uint32_t count = renumber_by_size(labels, min_size);
     if (min_relative > 0 && count > 0) {
         std::vector<double> size(count + 1, 0.0);
@@ -604,8 +607,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
         return done();
     }
     r.spacing = search::median_spacing(points.subset(members));
-    const Sample all = thinned(points, members, labels, (members.size() + params.max_samples - 1) /
-                                                            params.max_samples);
+    const Sample all = thinned(points, members, labels,
+                               (members.size() + params.max_samples - 1) / params.max_samples);
     const double ss = search::median_spacing(all.view);
     const double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all);
     if (!(ss > 0) || !(first > 0)) {
@@ -657,8 +660,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
     }
     votes.finish();
-    const std::vector<Peak> peaks = votes.peaks(params.peak_radius * R, params.peak_separation * R,
-                                                params.min_support, s, R);
+    const std::vector<Peak> peaks =
+        votes.peaks(params.peak_radius * R, params.peak_separation * R, params.min_support, s, R);
     r.peaks = static_cast<std::uint32_t>(peaks.size());
     if (peaks.empty()) {
         return done();

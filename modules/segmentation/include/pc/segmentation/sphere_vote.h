@@ -11,10 +11,10 @@ namespace pc::segmentation {
 /// cloud, or the prior `fruit_radius`) or of the point spacing s, so the result does not change
 /// when the cloud is scaled or rotated.
 struct SphereVoteParams {
-    double fruit_radius = 0;       ///< prior R in the cloud's units; 0: estimated from the cloud
+    double fruit_radius = 0;    ///< prior R in the cloud's units; 0: estimated from the cloud
     double normal_scale = 1.0;  ///< × R: the neighbourhood a voting normal is fitted to (>= 3 s)
-    double cell = 0.25;            ///< × R: the vote accumulator's cells
-    double peak_radius = 0.4;      ///< × R: votes within this of a peak support it
+    double cell = 0.25;         ///< × R: the vote accumulator's cells
+    double peak_radius = 0.4;   ///< × R: votes within this of a peak support it
     double peak_separation = 0.8;  ///< × R: peaks closer than this are one fruit
     double min_support = 0.1;      ///< a peak needs this × the median peak's support
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
@@ -28,11 +28,11 @@ struct SphereVoteParams {
 struct SphereVoteResult {
     std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
     std::uint32_t cluster_count = 0;
-    std::uint32_t peaks = 0;    ///< fruit centres found
-    double spacing = 0;         ///< s: median nearest-neighbour distance of the clustered points
-    double fruit_radius = 0;    ///< R used (the prior, or the estimate; 0 when none was possible)
-    bool estimated = false;     ///< R was estimated from the cloud
-    bool solid = false;         ///< solid fruit (their outer layer voted), else surfaces
+    std::uint32_t peaks = 0;  ///< fruit centres found
+    double spacing = 0;       ///< s: median nearest-neighbour distance of the clustered points
+    double fruit_radius = 0;  ///< R used (the prior, or the estimate; 0 when none was possible)
+    bool estimated = false;   ///< R was estimated from the cloud
+    bool solid = false;       ///< solid fruit (their outer layer voted), else surfaces
 };
 
 /// Counts fruit as spheres, on solid and surface clouds alike, without medians over clusters:

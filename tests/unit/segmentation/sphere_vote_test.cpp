@@ -1,0 +1,259 @@
+// sphere_vote: hollow and solid bunches cut into their spheres, the radius found, leaves
+// dropped, fragments joined; the same partition after scaling and rotating.
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/core/random.h>
+#include <pc/segmentation/sphere_vote.h>
+
+namespace pc::segmentation {
+namespace {
+
+struct Scene {
+    Cloud cloud;
+    std::vector<std::uint32_t> truth, label;
+    void add(const Eigen::Vector3d& p, std::uint32_t id, std::uint32_t cluster) {
+        cloud.push_back(
+            {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+        truth.push_back(id);
+        label.push_back(cluster);
+    }
+};
+
+struct Ball {
+    Eigen::Vector3d centre;
+    double r;
+};
+
+/// Points about one spacing apart on each sphere's surface (a golden-angle spiral), those inside
+/// another sphere left out (touching fruit hide their contact).
+void add_shells(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id, std::uint32_t cluster) {
+    for (std::size_t b = 0; b < balls.size(); ++b) {
+        const auto n = static_cast<int>(std::lround(4 * 3.141592653589793 * balls[b].r * balls[b].r));
+        for (int i = 0; i < n; ++i) {
+            const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
+            const Eigen::Vector3d p =
+                balls[b].centre + balls[b].r * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
+            bool hidden = false;
+            for (std::size_t o = 0; o < balls.size(); ++o) {
+                hidden = hidden || (o != b && (p - balls[o].centre).norm() < balls[o].r);
+            }
+            if (!hidden) {
+                s.add(p, first_id + static_cast<std::uint32_t>(b), cluster);
+            }
+        }
+    }
+}
+
+/// Lattice points (spacing 1) inside each ball; a point inside two goes to the nearer centre.
+void add_solids(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id, std::uint32_t cluster) {
+    std::set<std::tuple<int, int, int>> done;
+    for (std::size_t b = 0; b < balls.size(); ++b) {
+        const auto lo = (balls[b].centre.array() - balls[b].r).floor().cast<int>();
+        const auto hi = (balls[b].centre.array() + balls[b].r).ceil().cast<int>();
+        for (int i = lo(0); i <= hi(0); ++i) {
+            for (int j = lo(1); j <= hi(1); ++j) {
+                for (int k = lo(2); k <= hi(2); ++k) {
+                    const Eigen::Vector3d p(i + 0.5, j + 0.5, k + 0.5);
+                    std::size_t best = balls.size();
+                    for (std::size_t o = 0; o < balls.size(); ++o) {
+                        if ((p - balls[o].centre).norm() <= balls[o].r &&
+                            (best == balls.size() || (p - balls[o].centre).norm() < (p - balls[best].centre).norm())) {
+                            best = o;
+                        }
+                    }
+                    if (best == b && done.insert({i, j, k}).second) {
+                        s.add(p, first_id + static_cast<std::uint32_t>(b), cluster);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Three lone fruit and a bunch of four touching ones (DBSCAN's one cluster), radius r.
+std::vector<std::pair<std::vector<Ball>, std::uint32_t>> layout(double r) {
+    const double d = 2 * r;
+    return {{{{{0, 0, 0}, r}}, 1},
+            {{{{6 * r, 0, 0}, r}}, 2},
+            {{{{0, 6 * r, 0}, r}}, 3},
+            {{{{6 * r, 6 * r, 0}, r},
+              {{6 * r + d, 6 * r, 0}, r},
+              {{6 * r + 0.5 * d, 6 * r + 0.866 * d, 0}, r},
+              {{6 * r + 0.5 * d, 6 * r + 0.289 * d, 0.816 * d}, r}},
+             4}};
+}
+
+Scene hollow(double r) {
+    Scene s;
+    std::uint32_t id = 1;
+    for (const auto& [balls, cluster] : layout(r)) {
+        add_shells(s, balls, id, cluster);
+        id += static_cast<std::uint32_t>(balls.size());
+    }
+    return s;
+}
+
+Scene solid(double r) {
+    Scene s;
+    std::uint32_t id = 1;
+    for (const auto& [balls, cluster] : layout(r)) {
+        add_solids(s, balls, id, cluster);
+        id += static_cast<std::uint32_t>(balls.size());
+    }
+    return s;
+}
+
+/// Points whose label is not the majority label of their true object (truth 0, not fruit, is not
+/// an object), or -1 when two objects share a majority label (a merge) or one's is noise.
+long misassigned(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& truth) {
+    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ++votes[truth[k]][got[k]];
+    }
+    long wrong = 0;
+    std::set<std::uint32_t> used;
+    for (const auto& [id, v] : votes) {
+        if (id == 0) {
+            continue;
+        }
+        long best = 0, all = 0;
+        std::uint32_t label = 0;
+        for (const auto& [l, n] : v) {
+            if (n > best) {
+                best = n;
+                label = l;
+            }
+            all += n;
+        }
+        if (label == 0 || !used.insert(label).second) {
+            return -1;
+        }
+        wrong += all - best;
+    }
+    return wrong;
+}
+
+TEST(SphereVote, HollowBunchIsCutIntoItsSpheresAndTheRadiusFound) {
+    const Scene s = hollow(10);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_FALSE(r.solid);
+    EXPECT_TRUE(r.estimated);
+    EXPECT_NEAR(r.fruit_radius, 10, 0.5);
+    const long wrong = misassigned(r.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));  // under 1 %: contact rims
+}
+
+TEST(SphereVote, SolidBunchIsCutThroughItsOuterLayer) {
+    const Scene s = solid(6);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_TRUE(r.solid);
+    EXPECT_NEAR(r.fruit_radius, 6, 1.2);  // the outer layer lies up to a spacing inside
+    const long wrong = misassigned(r.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 50));
+}
+
+TEST(SphereVote, SamePartitionWhenScaledOrRotated) {
+    const Scene s = hollow(8);
+    const SphereVoteResult base = sphere_vote(XyzView(s.cloud), s.label, {});
+    const Eigen::Matrix3d turn =
+        Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+    for (double scale : {0.001, 0.25, 4.0, 1000.0}) {
+        for (bool rotate : {false, true}) {
+            Cloud moved;
+            for (const auto& p : s.cloud) {
+                Eigen::Vector3d q(p.x, p.y, p.z);
+                q = scale * (rotate ? turn * q : q);
+                moved.push_back({static_cast<float>(q.x()), static_cast<float>(q.y()),
+                                 static_cast<float>(q.z())});
+            }
+            const SphereVoteResult r = sphere_vote(XyzView(moved), s.label, {});
+            EXPECT_EQ(r.cluster_count, base.cluster_count) << scale << " " << rotate;
+            EXPECT_NEAR(r.fruit_radius / scale, base.fruit_radius, 0.02 * base.fruit_radius);
+            EXPECT_GE(misassigned(r.labels, s.truth), 0);
+        }
+    }
+}
+
+TEST(SphereVote, NoisySmallFruitAreCountedOnceEach) {
+    // Three spacings a radius, jittered by a tenth of it: normals scatter, yet each fruit is one
+    // peak.
+    Scene s = hollow(3);
+    Rng rng(5);
+    for (auto& p : s.cloud) {
+        p.x += static_cast<float>(0.3 * rng.normal());
+        p.y += static_cast<float>(0.3 * rng.normal());
+        p.z += static_cast<float>(0.3 * rng.normal());
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_GE(misassigned(r.labels, s.truth), 0);
+}
+
+TEST(SphereVote, AGivenRadiusIsUsedAsIs) {
+    const Scene s = hollow(10);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 10});
+    EXPECT_EQ(r.fruit_radius, 10);
+    EXPECT_FALSE(r.estimated);
+    EXPECT_EQ(r.cluster_count, 7u);
+}
+
+TEST(SphereVote, FragmentsOfOneFruitJoinAndFlatLeftoversAreDropped) {
+    Scene s = hollow(10);
+    // Fruit 1's upper cap becomes a separate DBSCAN cluster (occlusion cut it off).
+    for (std::size_t k = 0; k < s.cloud.size(); ++k) {
+        if (s.truth[k] == 1 && s.cloud[k].z > 5) {
+            s.label[k] = 9;
+        }
+    }
+    // A leaf: a flat disc of its own cluster, far from every fruit.
+    for (int i = 0; i < 400; ++i) {
+        const double rho = 12 * std::sqrt((i + 0.5) / 400), phi = 2.399963 * i;
+        s.add({-60 + rho * std::cos(phi), -60 + rho * std::sin(phi), 0}, 0, 10);
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.cluster_count, 7u);
+    const long wrong = misassigned(r.labels, s.truth);  // the leaf (truth 0) is all noise
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));
+    for (std::size_t k = 0; k < s.cloud.size(); ++k) {
+        if (s.truth[k] == 0) {
+            ASSERT_EQ(r.labels[k], 0u);
+        }
+    }
+}
+
+TEST(SphereVote, NoiseStaysNoiseAndBadInputIsRefused) {
+    Scene s = hollow(10);
+    s.label[5] = 0;
+    s.cloud[7].x = std::numeric_limits<float>::quiet_NaN();
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.labels[5], 0u);
+    EXPECT_EQ(r.labels[7], 0u);
+    EXPECT_EQ(sphere_vote(XyzView(s.cloud), s.label, {}).labels, r.labels);  // deterministic
+    // Too few points for anything: the clusters stay whole, numbered by size.
+    Cloud few;
+    for (int i = 0; i < 5; ++i) {
+        few.push_back({static_cast<float>(i), 0, 0});
+    }
+    const SphereVoteResult f = sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {});
+    EXPECT_EQ(f.labels, (std::vector<std::uint32_t>{2, 2, 1, 1, 1}));
+    EXPECT_EQ(f.fruit_radius, 0);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1}, {}), InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.fruit_radius = -1}),
+                 InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.cell = 0}), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace pc::segmentation
