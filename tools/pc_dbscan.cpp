@@ -14,8 +14,9 @@ int main(int argc, char** argv) {
                        "add field label: DBSCAN cluster 1..N (largest first), 0 = noise");
     tool.option(
         "eps", pc::format_number(p.eps), [&](const std::string& s) { pl::parse_eps(s, p, eps); },
-        "neighbour iff distance <= eps (scikit-learn), cloud units; 'auto' = knee of the "
-        "k-distance curve; 'spacing' or 'Nxs' = N x the median point spacing (printed with -v)");
+        "neighbour iff distance <= eps (scikit-learn), cloud units; 'auto' = 4 x the median point "
+        "spacing; 'Nxs' = N x it ('spacing': 3.5); 'knee' = knee of the k-distance curve "
+        "(printed with -v)");
     tool.option("min-points", &p.min_points, "neighbours a core point needs, itself INCLUDED");
     tool.presets(pl::preset_names(), [&](const std::string& name) {
         p = pl::preset(name).dbscan;

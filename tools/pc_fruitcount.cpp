@@ -68,8 +68,8 @@ int main(int argc, char** argv) {
     tool.option(
         "eps", pl::eps_text(chain.dbscan, chain.eps),
         [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
-        "DBSCAN: neighbour iff distance <= eps; 'auto' (knee), 'spacing' or 'Nxs' (N x point "
-        "spacing)");
+        "DBSCAN: neighbour iff distance <= eps; 'auto' (4 x the point spacing), 'Nxs' (N x it), "
+        "'knee' (k-distance knee)");
     tool.option("min-points", &chain.dbscan.min_points,
                 "DBSCAN: core needs this many, itself included");
     pc::tools::bind_split_options(tool, split, "split: ");

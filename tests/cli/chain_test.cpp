@@ -91,7 +91,7 @@ TEST(PcDbscan, EpsAutoReportsTheChosenValueWithVerbose) {
                                   " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto "
                                   "--min-points 4 -v | @pc_count --plain");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps auto (knee) = "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps = 4 x spacing "), std::string::npos) << r.err;
 }
 
 TEST(PcDbscan, BadEpsIsAUsageError) {
@@ -158,6 +158,21 @@ TEST(PcCount, EmptyCloudCountsZeroAndGroundTruthAddsRecovery) {
     EXPECT_EQ(j["count"], 2);
     EXPECT_EQ(j["recovery"], 0.5);
     EXPECT_EQ(j["noise_points"], 1);
+    // Clusters of one point each: far below a resolvable fruit, said in the report and on stderr.
+    ASSERT_EQ(j["warnings"].size(), 1u) << r.out;
+    EXPECT_NE(j["warnings"][0].get<std::string>().find("the median cluster has only 1 points"),
+              std::string::npos);
+    EXPECT_NE(r.err.find("pc_count: warning: the median cluster has only 1 points"),
+              std::string::npos)
+        << r.err;
+}
+
+TEST(PcDbscan, EpsKneeIsTheKDistanceKnee) {
+    const RunResult r = run_shell("@pc_convert -i " + kSample +
+                                  " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps knee "
+                                  "--min-points 4 -v | @pc_count --plain");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps knee = "), std::string::npos) << r.err;
 }
 
 TEST(PcVoxel, CollapsesPointsAndKeepsFields) {

@@ -12,8 +12,9 @@ double cli_number(const std::string& option, const std::string& text) {
     double v = 0;
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(v)) {
-        throw InvalidArgument(
-            "--" + option + ": expected a number, 'auto', 'spacing' or 'Nxs', got '" + text + "'");
+        throw InvalidArgument("--" + option +
+                              ": expected a number, 'auto', 'knee', 'spacing' or 'Nxs', got '" +
+                              text + "'");
     }
     return v;
 }
@@ -27,7 +28,10 @@ const std::vector<std::string>& preset_names() {
 }
 
 void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule) {
-    if (text == "auto") {
+    if (text == "auto") {  // the robust choice: 4 x the point spacing (docs/robustness.md)
+        rule.mode = EpsRule::Mode::kSpacing;
+        rule.factor = 4.0;
+    } else if (text == "knee") {
         rule.mode = EpsRule::Mode::kKnee;
     } else if (text == "spacing") {
         rule.mode = EpsRule::Mode::kSpacing;
@@ -46,7 +50,7 @@ void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsR
 std::string eps_text(const segmentation::DbscanParams& dbscan, const EpsRule& rule) {
     switch (rule.mode) {
         case EpsRule::Mode::kKnee:
-            return "auto";
+            return "knee";
         case EpsRule::Mode::kSpacing:
             return format_number(rule.factor) + "xs";
         case EpsRule::Mode::kFixed:

@@ -143,7 +143,7 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
     std::vector<std::pair<std::string, double>> values;
     if (eps.mode == EpsRule::Mode::kKnee) {
         p.eps = segmentation::estimate_eps(io::XyzPoints(in).view(), p.min_points);
-        note = "dbscan: eps auto (knee) = " + format_number(p.eps) + "; ";
+        note = "dbscan: eps knee = " + format_number(p.eps) + "; ";
     } else if (eps.mode == EpsRule::Mode::kSpacing) {
         const double s = search::median_spacing(io::XyzPoints(in).view());
         values.emplace_back("spacing", s);
@@ -276,6 +276,17 @@ std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, s
     if (s.clusters.empty() && points > 0) {
         w.push_back("no cluster counted in a cloud of " + std::to_string(points) +
                     " points: see the steps' points in and out");
+    }
+    // Below about 40 points a fruit is 2 point spacings in radius or less: touching fruit merge
+    // or split by chance (docs/robustness.md: F1 about 0.55 there, 0.94 and more from 3).
+    std::vector<double> sizes;
+    for (const auto& c : s.clusters) {
+        sizes.push_back(static_cast<double>(c.points));
+    }
+    if (!sizes.empty() && median(sizes) < 40) {
+        w.push_back("the median cluster has only " + format_number(median(sizes)) +
+                    " points: at this resolution touching fruit merge or split by chance; treat "
+                    "the count as rough");
     }
     return w;
 }

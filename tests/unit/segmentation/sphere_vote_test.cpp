@@ -33,13 +33,18 @@ struct Ball {
 
 /// Points about one spacing apart on each sphere's surface (a golden-angle spiral), those inside
 /// another sphere left out (touching fruit hide their contact).
-void add_shells(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id, std::uint32_t cluster) {
+void add_shells(Scene& s,
+                const std::vector<Ball>& balls,
+                std::uint32_t first_id,
+                std::uint32_t cluster) {
     for (std::size_t b = 0; b < balls.size(); ++b) {
-        const auto n = static_cast<int>(std::lround(4 * 3.141592653589793 * balls[b].r * balls[b].r));
+        const auto n =
+            static_cast<int>(std::lround(4 * 3.141592653589793 * balls[b].r * balls[b].r));
         for (int i = 0; i < n; ++i) {
             const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
             const Eigen::Vector3d p =
-                balls[b].centre + balls[b].r * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
+                balls[b].centre +
+                balls[b].r * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
             bool hidden = false;
             for (std::size_t o = 0; o < balls.size(); ++o) {
                 hidden = hidden || (o != b && (p - balls[o].centre).norm() < balls[o].r);
@@ -52,7 +57,10 @@ void add_shells(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id
 }
 
 /// Lattice points (spacing 1) inside each ball; a point inside two goes to the nearer centre.
-void add_solids(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id, std::uint32_t cluster) {
+void add_solids(Scene& s,
+                const std::vector<Ball>& balls,
+                std::uint32_t first_id,
+                std::uint32_t cluster) {
     std::set<std::tuple<int, int, int>> done;
     for (std::size_t b = 0; b < balls.size(); ++b) {
         const auto lo = (balls[b].centre.array() - balls[b].r).floor().cast<int>();
@@ -64,7 +72,8 @@ void add_solids(Scene& s, const std::vector<Ball>& balls, std::uint32_t first_id
                     std::size_t best = balls.size();
                     for (std::size_t o = 0; o < balls.size(); ++o) {
                         if ((p - balls[o].centre).norm() <= balls[o].r &&
-                            (best == balls.size() || (p - balls[o].centre).norm() < (p - balls[best].centre).norm())) {
+                            (best == balls.size() ||
+                             (p - balls[o].centre).norm() < (p - balls[best].centre).norm())) {
                             best = o;
                         }
                     }

@@ -24,10 +24,11 @@ struct EpsRule {
     double factor = 3.5;  ///< kSpacing: eps = factor × median nearest-neighbour distance
 };
 
-/// Reads the text of an `--eps` option: a number (fixed), "auto" (knee) or "spacing" (factor ×
-/// spacing, the factor kept), or "Nxs" (N × spacing). Throws pc::InvalidArgument.
+/// Reads the text of an `--eps` option: a number (fixed), "auto" (4 × the point spacing: the
+/// robust choice), "knee" (the k-distance knee), "spacing" (factor × spacing, the factor kept), or
+/// "Nxs" (N × spacing). Throws pc::InvalidArgument.
 void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule);
-/// The `--eps` text that parse_eps() reads back to the same choice ("0.015", "auto", "4xs").
+/// The `--eps` text that parse_eps() reads back to the same choice ("0.015", "knee", "4xs").
 [[nodiscard]] std::string eps_text(const segmentation::DbscanParams& dbscan, const EpsRule& rule);
 
 /// Every parameter of the counting chain (../shared/METHOD.md), step by step.
