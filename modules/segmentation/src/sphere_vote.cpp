@@ -278,6 +278,7 @@ public:
     std::vector<Peak> peaks(double radius,
                             double separation,
                             double min_support,
+                            double max_alignment,
                             const Sample& s,
                             double fruit_radius) const {
         std::vector<double> box(keys_.size(), 0.0);
@@ -334,9 +335,16 @@ public:
             }
             Peak p = candidate;
             p.support = 0;
-            for_votes_within(p.centre, radius,
-                             [&](const Entry& e) { p.support += explained[e.voter] ? 0.0 : e.w; });
-            if (p.support < need) {
+            V3 towards = V3::Zero();  // the voters' directions to the centre, summed
+            for_votes_within(p.centre, radius, [&](const Entry& e) {
+                if (!explained[e.voter]) {
+                    p.support += e.w;
+                    towards += e.w * (p.centre - vec(s.view[e.voter])).normalized();
+                }
+            });
+            // A fruit is seen from several sides; a flat patch (a piece of leaf) votes from one
+            // direction only (its normals are parallel) and is no fruit.
+            if (p.support < need || towards.norm() > max_alignment * p.support) {
                 continue;
             }
             p.radius = voter_radius(p.centre, radius, s, fruit_radius);
@@ -570,6 +578,9 @@ void SphereVoteParams::validate() const {
     if (!(min_support >= 0 && min_support <= 1)) {
         throw InvalidArgument("sphere_vote: min_support must be in [0, 1]");
     }
+    if (!(max_alignment > 0 && max_alignment <= 1)) {
+        throw InvalidArgument("sphere_vote: max_alignment must be in (0, 1]");
+    }
     if (max_samples < 100) {
         throw InvalidArgument("sphere_vote: max_samples must be >= 100");
     }
@@ -660,8 +671,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
     }
     votes.finish();
-    const std::vector<Peak> peaks =
-        votes.peaks(params.peak_radius * R, params.peak_separation * R, params.min_support, s, R);
+    const std::vector<Peak> peaks = votes.peaks(params.peak_radius * R, params.peak_separation * R,
+                                                params.min_support, params.max_alignment, s, R);
     r.peaks = static_cast<std::uint32_t>(peaks.size());
     if (peaks.empty()) {
         return done();

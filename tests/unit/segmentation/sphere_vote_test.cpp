@@ -225,10 +225,16 @@ TEST(SphereVote, FragmentsOfOneFruitJoinAndFlatLeftoversAreDropped) {
             s.label[k] = 9;
         }
     }
-    // A leaf: a flat disc of its own cluster, far from every fruit.
+    // A leaf: a flat disc of its own cluster, far from every fruit; and a piece of leaf smaller
+    // than a fruit, whose parallel normals vote into one compact spot (no fruit: seen from one
+    // side only).
     for (int i = 0; i < 400; ++i) {
         const double rho = 12 * std::sqrt((i + 0.5) / 400), phi = 2.399963 * i;
         s.add({-60 + rho * std::cos(phi), -60 + rho * std::sin(phi), 0}, 0, 10);
+    }
+    for (int i = 0; i < 300; ++i) {
+        const double rho = 3 * std::sqrt((i + 0.5) / 300), phi = 2.399963 * i;
+        s.add({-60 + rho * std::cos(phi), 60, rho * std::sin(phi)}, 0, 11);
     }
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
     EXPECT_EQ(r.cluster_count, 7u);

@@ -17,6 +17,9 @@ struct SphereVoteParams {
     double peak_radius = 0.4;   ///< × R: votes within this of a peak support it
     double peak_separation = 0.8;  ///< × R: peaks closer than this are one fruit
     double min_support = 0.1;      ///< a peak needs this × the median peak's support
+    /// ... and voters from more than one side: the length of their mean direction to it at most
+    /// this (1: all parallel, a flat patch such as a piece of leaf)
+    double max_alignment = 0.93;
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
     std::uint32_t max_samples = 100000;  ///< points that fit normals and vote (a strided sample)
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
