@@ -536,27 +536,48 @@ void assign(const XyzView& points,
     }
 }
 
-/// Drops clusters below min_size points or min_relative × the median cluster size (to 0) and
-/// numbers the rest 1.. by decreasing size.
+/// Drops parts below min_size points or min_relative × the median fruit's points (to 0) and
+/// numbers the rest 1.. by decreasing size. Labels 1..fruit are fruit around a centre, higher
+/// ones the leftovers of clusters no centre claimed. When centres claimed most points, the
+/// median is over their fruit and leftovers also go below a quarter of it (the pieces DBSCAN cut
+/// off a fruit); otherwise (few or no centres) every part is measured against the median part.
 std::uint32_t finish(std::vector<std::uint32_t>& labels,
                      std::uint32_t min_size,
-                     double min_relative) {
-    std::uint32_t count = renumber_by_size(labels, min_size);
-    if (min_relative > 0 && count > 0) {
-        std::vector<double> size(count + 1, 0.0);
+                     double min_relative,
+                     std::uint32_t fruit) {
+    if (min_relative > 0) {
+        std::uint32_t top = 0;
+        for (auto l : labels) {
+            top = std::max(top, l);
+        }
+        std::vector<double> size(std::size_t{top} + 1, 0.0);
         for (auto l : labels) {
             size[l] += 1;
         }
-        std::vector<double> sizes(size.begin() + 1, size.end());
-        const double cut = min_relative * median(sizes);
+        double claimed = 0, all = 0;
+        for (std::uint32_t l = 1; l <= top; ++l) {
+            claimed += l <= fruit ? size[l] : 0.0;
+            all += size[l];
+        }
+        if (claimed < 0.5 * all) {
+            fruit = 0;
+        }
+        std::vector<double> reference;
+        for (std::uint32_t l = 1; l <= top; ++l) {
+            if (size[l] > 0 && (fruit == 0 || l <= fruit)) {
+                reference.push_back(size[l]);
+            }
+        }
+        const double typical = reference.empty() ? 0.0 : median(reference);
         for (auto& l : labels) {
-            if (l != 0 && size[l] < cut) {
+            const double cut =
+                (fruit > 0 && l > fruit ? std::max(min_relative, 0.25) : min_relative);
+            if (l != 0 && size[l] < cut * typical) {
                 l = 0;
             }
         }
-        count = renumber_by_size(labels, 0);
     }
-    return count;
+    return renumber_by_size(labels, min_size);
 }
 
 }  // namespace
@@ -610,7 +631,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
     }
     // Numbers and filters the parts (the clusters, whole, when no fruit centre was found).
     const auto done = [&] {
-        r.cluster_count = finish(labels, params.min_cluster_size, params.min_relative_size);
+        r.cluster_count =
+            finish(labels, params.min_cluster_size, params.min_relative_size, r.peaks);
         r.labels = std::move(labels);
         return r;
     };
