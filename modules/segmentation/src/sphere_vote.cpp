@@ -262,6 +262,7 @@ public:
         });
         for (std::uint32_t v = 0; v < entries_.size(); ++v) {
             if (keys_.empty() || keys_.back() != entries_[v].key) {
+                index_.emplace(entries_[v].key, static_cast<std::uint32_t>(keys_.size()));
                 keys_.push_back(entries_[v].key);
                 begin_.push_back(v);
                 sum_.push_back(0);
@@ -299,24 +300,52 @@ public:
             return a.first > b.first || (a.first == b.first && a.second < b.second);
         });
         std::vector<Peak> found;
+        // Candidates far below the strongest, or in a cell a refined peak already covers (they
+        // climb to the same centre), are not refined.
+        std::vector<std::uint8_t> covered(keys_.size(), 0);
+        const int reach = static_cast<int>(std::ceil(radius / cell_));
         for (const auto& [b, c] : candidates) {
+            if (b < 0.02 * candidates.front().first || covered[c]) {
+                continue;
+            }
             Peak p = refine(c, radius);
-            // Sharp: most of the votes within 2 radius are within radius (a true centre), not a
-            // stretch of the diffuse shell the wrong-side votes make.
-            if (p.support > 0 && p.support >= 0.45 * gather(p.centre, 2 * radius)) {
+            for_cells(
+                key_of(coord(p.centre.x(), 0), coord(p.centre.y(), 1), coord(p.centre.z(), 2)),
+                reach, [&](std::size_t n) { covered[n] = 1; });
+            if (p.support > 0) {
                 found.push_back(p);
             }
         }
-        std::sort(found.begin(), found.end(),
-                  [](const Peak& a, const Peak& b) { return a.support > b.support; });
-        if (found.empty()) {
-            return found;
+        std::sort(found.begin(), found.end(), [](const Peak& a, const Peak& b) {
+            return a.support > b.support ||
+                   (a.support == b.support &&
+                    std::lexicographical_compare(a.centre.data(), a.centre.data() + 3,
+                                                 b.centre.data(), b.centre.data() + 3));
+        });
+        // Sharp: most of the votes within 2 radius are within radius (a true centre), not a
+        // stretch of the diffuse shell the wrong-side votes make. Asked only of peaks that could
+        // be kept (it reads 8 times the cells of a support).
+        std::vector<std::int8_t> sharp(found.size(), -1);
+        const auto is_sharp = [&](std::size_t k) {
+            if (sharp[k] < 0) {
+                sharp[k] = found[k].support >= 0.45 * gather(found[k].centre, 2 * radius) ? 1 : 0;
+            }
+            return sharp[k] == 1;
+        };
+        // The typical fruit: the median support of the sharp peaks above a tenth of the strongest
+        // sharp one.
+        std::size_t top = 0;
+        while (top < found.size() && !is_sharp(top)) {
+            ++top;
         }
-        // The typical fruit: the median support of the peaks above a tenth of the strongest.
+        if (top == found.size()) {
+            return {};
+        }
         std::vector<double> strong;
-        for (const Peak& p : found) {
-            if (p.support >= 0.1 * found.front().support) {
-                strong.push_back(p.support);
+        for (std::size_t k = top; k < found.size() && found[k].support >= 0.1 * found[top].support;
+             ++k) {
+            if (is_sharp(k)) {
+                strong.push_back(found[k].support);
             }
         }
         const double need = min_support * median(strong);
@@ -325,7 +354,11 @@ public:
         const search::Grid grid(s.view, 1.7 * fruit_radius);
         std::vector<std::uint8_t> explained(s.view.size, 0);
         std::vector<Peak> kept;
-        for (const Peak& candidate : found) {
+        for (std::size_t k = 0; k < found.size() && found[k].support >= need; ++k) {
+            const Peak& candidate = found[k];
+            if (!is_sharp(k)) {
+                continue;
+            }
             bool apart = true;
             for (const Peak& q : kept) {
                 apart = apart && (candidate.centre - q.centre).norm() >= separation;
@@ -380,9 +413,9 @@ private:
             for (int dy = -reach; dy <= reach; ++dy) {
                 for (int dz = -reach; dz <= reach; ++dz) {
                     const std::uint64_t n = key_of(c[0] + dx, c[1] + dy, c[2] + dz);
-                    const auto it = std::lower_bound(keys_.begin(), keys_.end(), n);
-                    if (it != keys_.end() && *it == n) {
-                        f(static_cast<std::size_t>(it - keys_.begin()));
+                    const auto it = index_.find(n);
+                    if (it != index_.end()) {
+                        f(it->second);
                     }
                 }
             }
@@ -448,8 +481,9 @@ private:
 
     double cell_;
     V3 origin_;
-    std::vector<Entry> entries_;        ///< sorted by cell after finish()
-    std::vector<std::uint64_t> keys_;   ///< the occupied cells, ascending
+    std::vector<Entry> entries_;                              ///< sorted by cell after finish()
+    std::vector<std::uint64_t> keys_;                         ///< the occupied cells, ascending
+    std::unordered_map<std::uint64_t, std::uint32_t> index_;  ///< cell key -> its place in keys_
     std::vector<std::uint32_t> begin_;  ///< cell c's votes: entries_[begin_[c], begin_[c + 1])
     std::vector<double> sum_;           ///< cell c's total weight
 };
@@ -639,10 +673,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     if (members.size() < 10) {
         return done();
     }
-    r.spacing = search::median_spacing(points.subset(members));
     const Sample all = thinned(points, members, labels,
                                (members.size() + params.max_samples - 1) / params.max_samples);
     const double ss = search::median_spacing(all.view);
+    r.spacing = ss;
     const double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all);
     if (!(ss > 0) || !(first > 0)) {
         return done();

@@ -32,7 +32,7 @@ struct SphereVoteResult {
     std::vector<std::uint32_t> labels;  ///< per point: 1..cluster_count by decreasing size, or 0
     std::uint32_t cluster_count = 0;
     std::uint32_t peaks = 0;  ///< fruit centres found
-    double spacing = 0;       ///< s: median nearest-neighbour distance of the clustered points
+    double spacing = 0;       ///< s: median nearest-neighbour distance of the points that voted
     double fruit_radius = 0;  ///< R used (the prior, or the estimate; 0 when none was possible)
     bool estimated = false;   ///< R was estimated from the cloud
     bool solid = false;       ///< solid fruit (their outer layer voted), else surfaces
