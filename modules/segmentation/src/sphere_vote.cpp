@@ -227,6 +227,12 @@ double rough_size(const Sample& s) {
     return rms.empty() ? 0.0 : median(rms);
 }
 
+/// floor(v) as an integer, clamped far beyond any key's range (no overflow for huge or tiny
+/// cells); cells outside the range of key_of() are never looked up as neighbours of real ones.
+std::int64_t cell_index(double v) {
+    return static_cast<std::int64_t>(std::clamp(std::floor(v), -1e15, 1e15));
+}
+
 std::uint64_t key_of(std::int64_t x, std::int64_t y, std::int64_t z) {
     const auto u = [](std::int64_t v) {
         return static_cast<std::uint64_t>(v + (std::int64_t{1} << 20)) & 0x1fffff;
@@ -397,7 +403,7 @@ private:
     };
 
     [[nodiscard]] std::int64_t coord(double v, int a) const {
-        return static_cast<std::int64_t>(std::floor((v - origin_(a)) / cell_));
+        return cell_index((v - origin_(a)) / cell_);
     }
     static std::array<std::int64_t, 3> unkey(std::uint64_t k) {
         const auto v = [](std::uint64_t u) {
@@ -519,9 +525,7 @@ void assign(const XyzView& points,
             double R) {
     const double cell = reach * 1.4 * R;
     const V3 origin = peaks.front().centre;
-    const auto cell_of = [&](const V3& p, int a) {
-        return static_cast<std::int64_t>(std::floor((p(a) - origin(a)) / cell));
-    };
+    const auto cell_of = [&](const V3& p, int a) { return cell_index((p(a) - origin(a)) / cell); };
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near;
     for (std::uint32_t j = 0; j < peaks.size(); ++j) {
         const V3& c = peaks[j].centre;
