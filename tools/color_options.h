@@ -25,15 +25,15 @@ struct ColorOptions {
     /// Sets the chain's colour step (a fixed rule or a word); pc::InvalidArgument when a word and
     /// rules were both given.
     void apply(pipeline::ChainParams& chain) const {
-        const bool rules_given = this->rules_given || invert;
-        if (rules_given && word_given) {
+        const bool with_rules = rules_given || invert;
+        if (with_rules && word_given) {
             throw InvalidArgument(
                 "give either --fruit-color or colour rules (--min-mean, --min-value, --hue, "
                 "--saturation, --value, --invert), not both");
         }
         chain.color.reset();
         chain.fruit_color.reset();
-        if (word && !rules_given) {
+        if (word && !with_rules) {
             chain.fruit_color = word;
         } else {
             chain.color = rules;
