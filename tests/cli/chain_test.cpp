@@ -167,6 +167,33 @@ TEST(PcCount, EmptyCloudCountsZeroAndGroundTruthAddsRecovery) {
         << r.err;
 }
 
+TEST(PcFruitcount, ColourWordsRulesAndAGivenRadiusReachTheirSteps) {
+    // A word fixes the colour rule and the report says which ran.
+    const RunResult red = run_shell("@pc_fruitcount --fruit-color red -i " + kSample);
+    ASSERT_EQ(red.code, 0) << red.err;
+    const auto r = nlohmann::json::parse(red.out);
+    EXPECT_EQ(r["steps"][0]["rule"], "red: hue 320..35 deg");
+    // Any pc_colorfilter rule is accepted, but not together with a word.
+    const RunResult rule =
+        run_shell("@pc_fruitcount --hue 0:60 --saturation 0.2:1 --plain -i " + kSample);
+    EXPECT_EQ(rule.code, 0) << rule.err;
+    const RunResult both = run_shell("@pc_fruitcount --fruit-color red --hue 0:60 -i " + kSample);
+    EXPECT_EQ(both.code, 2);
+    EXPECT_NE(both.err.find("give either --fruit-color or colour rules"), std::string::npos)
+        << both.err;
+    const RunResult word = run_shell("@pc_fruitcount --fruit-color blue -i " + kSample);
+    EXPECT_EQ(word.code, 2);
+    EXPECT_NE(word.err.find("--fruit-color must be auto, mask, red"), std::string::npos)
+        << word.err;
+    // A known fruit radius is used as given, and the split's record says so.
+    const RunResult given = run_shell("@pc_fruitcount --fruit-radius 0.02 -i " + kSample);
+    ASSERT_EQ(given.code, 0) << given.err;
+    const auto g = nlohmann::json::parse(given.out);
+    EXPECT_EQ(g["steps"].back()["step"], "recursive_split");
+    EXPECT_EQ(g["steps"].back()["fruit_radius"], 0.02);
+    EXPECT_EQ(g["count"], sample_fruit_count());
+}
+
 TEST(PcDbscan, EpsKneeIsTheKDistanceKnee) {
     const RunResult r = run_shell("@pc_convert -i " + kSample +
                                   " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps knee "
