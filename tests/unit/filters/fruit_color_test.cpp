@@ -1,0 +1,122 @@
+// choose_fruit_color: the rule read from the colours of a cloud, and the words.
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <pc/core/error.h>
+#include <pc/filters/fruit_color.h>
+
+namespace pc::filters {
+namespace {
+
+std::vector<io::Rgb> repeat(std::vector<std::pair<io::Rgb, int>> parts) {
+    std::vector<io::Rgb> out;
+    for (const auto& [c, n] : parts) {
+        out.insert(out.end(), static_cast<std::size_t>(n), c);
+    }
+    return out;
+}
+
+std::size_t kept(const std::vector<io::Rgb>& c, const FruitColorChoice& choice) {
+    return choice.rule ? color_filter(c, *choice.rule).kept.size() : c.size();
+}
+
+TEST(FruitColor, TwoTonedGreyIsAMaskAndKeepsThePapersRule) {
+    const auto c = repeat({{{0.98f, 0.98f, 0.98f}, 300}, {{0.02f, 0.02f, 0.02f}, 700}});
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.rule);
+    EXPECT_EQ(r.rule->min_mean, 0.5);
+    EXPECT_TRUE(r.warnings.empty());
+    EXPECT_EQ(kept(c, r), 300u);
+}
+
+TEST(FruitColor, EvenGreysCarryNoFruitInformation) {
+    std::vector<io::Rgb> c;
+    for (int i = 0; i < 1000; ++i) {
+        const float v = static_cast<float>(i) / 999;
+        c.push_back({v, v, v});
+    }
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    EXPECT_FALSE(r.rule);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("cannot tell fruit"), std::string::npos);
+}
+
+TEST(FruitColor, NaturalColoursKeepSaturatedNonFoliageOfAnyBrightness) {
+    // Dark red (hue 0), shaded purple (hue 313), orange; green leaves (hue 109), grey ground.
+    const auto c = repeat({{{0.47f, 0.08f, 0.08f}, 100},
+                           {{0.12f, 0.05f, 0.10f}, 100},
+                           {{0.92f, 0.55f, 0.18f}, 100},
+                           {{0.24f, 0.49f, 0.18f}, 300},
+                           {{0.20f, 0.19f, 0.21f}, 200}});
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.rule);
+    EXPECT_TRUE(r.warnings.empty());
+    EXPECT_EQ(kept(c, r), 300u);  // the three fruit colours; the paper's rule keeps 100
+    EXPECT_EQ(color_filter(c, {.min_mean = 0.5}).kept.size(), 100u);
+}
+
+TEST(FruitColor, AllGreenKeepsEverySaturatedPointAndSaysLeavesStay) {
+    const auto c = repeat({{{0.49f, 0.69f, 0.24f}, 100},   // green fruit
+                           {{0.24f, 0.49f, 0.18f}, 300},   // leaves
+                           {{0.20f, 0.19f, 0.21f}, 100}}); // ground
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.rule);
+    EXPECT_EQ(kept(c, r), 400u);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("leaves were kept"), std::string::npos);
+}
+
+/// A fully saturated colour of hue `h` degrees at value 0.6.
+io::Rgb hue(double h) {
+    const double x = 1 - std::abs(std::fmod(h / 60, 2.0) - 1);
+    const int k = static_cast<int>(h / 60) % 6;
+    const double r[6] = {1, x, 0, 0, x, 1}, g[6] = {x, 1, 1, x, 0, 0}, b[6] = {0, 0, x, 1, 1, x};
+    return {static_cast<float>(0.6 * r[k]), static_cast<float>(0.6 * g[k]),
+            static_cast<float>(0.6 * b[k])};
+}
+
+TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {
+    // Bands (degrees): red 320..35, orange 10..55, yellow 35..80, green 55..170, purple 240..350.
+    // Neighbouring bands overlap on purpose (an orange-red apple is both).
+    const struct {
+        FruitColor word;
+        double keep;
+        std::vector<double> drop;
+    } cases[] = {{FruitColor::kRed, 0, {57, 112, 200, 295}},
+                 {FruitColor::kOrange, 32, {112, 200, 295, 330}},
+                 {FruitColor::kYellow, 57, {0, 200, 295}},
+                 {FruitColor::kGreen, 112, {0, 32, 200, 295}},
+                 {FruitColor::kPurple, 295, {0, 32, 57, 112, 200}}};
+    for (const auto& c : cases) {
+        const FruitColorChoice r = choose_fruit_color({}, {.color = c.word});
+        ASSERT_TRUE(r.rule) << fruit_color_name(c.word);
+        EXPECT_EQ(color_filter(std::vector<io::Rgb>{hue(c.keep)}, *r.rule).kept.size(), 1u)
+            << fruit_color_name(c.word) << " keeps " << c.keep;
+        for (double d : c.drop) {
+            EXPECT_EQ(color_filter(std::vector<io::Rgb>{hue(d)}, *r.rule).kept.size(), 0u)
+                << fruit_color_name(c.word) << " drops " << d;
+        }
+    }
+    EXPECT_FALSE(choose_fruit_color({}, {.color = FruitColor::kAny}).rule);
+    EXPECT_EQ(choose_fruit_color({}, {.color = FruitColor::kMask}).rule->min_mean, 0.5);
+}
+
+TEST(FruitColor, WordsReadBackAndBadInputIsRefused) {
+    for (FruitColor w : {FruitColor::kAuto, FruitColor::kMask, FruitColor::kRed,
+                         FruitColor::kOrange, FruitColor::kYellow, FruitColor::kGreen,
+                         FruitColor::kPurple, FruitColor::kAny}) {
+        EXPECT_EQ(parse_fruit_color(fruit_color_name(w)), w);
+    }
+    EXPECT_THROW((void)parse_fruit_color("blue"), InvalidArgument);
+    EXPECT_THROW((void)choose_fruit_color({}, {.min_saturation = 1}), InvalidArgument);
+    // No colours at all, or only NaN: nothing to look at, no rule.
+    EXPECT_FALSE(choose_fruit_color({}, {}).rule);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(choose_fruit_color(repeat({{{nan, nan, nan}, 5}}), {}).rule);
+}
+
+}  // namespace
+}  // namespace pc::filters
