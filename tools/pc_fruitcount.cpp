@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
     seg::RecursiveSplitParams split = *chain.split;
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
-    bool plain = false;
+    bool plain = false, eps_check = false;
     std::string cloud_out;
 
     pc::cli::Tool tool("pc_fruitcount",
@@ -76,6 +76,9 @@ int main(int argc, char** argv) {
     tool.flag("no-split", &no_split, "skip the recursive split");
     tool.option("count-min-points", &chain.count_min_points,
                 "count clusters with at least this many points");
+    tool.flag("eps-check", &eps_check,
+              "count again at 0.8 and 1.25 x the eps used (DBSCAN and split rerun): a count that "
+              "swings by more than 2x is a warning; eps and counts go to the report");
     tool.option("gt", &gt, "ground-truth count: adds error and recovery to the report");
     tool.flag("plain", &plain, "print only the count");
     tool.option("cloud", &cloud_out, "also write the labelled cloud (binary PCD) to this file");
@@ -103,6 +106,13 @@ int main(int argc, char** argv) {
         for (const auto& w : pl::count_warnings(summary, points)) {
             warnings.push_back(w);
         }
+        std::optional<pl::EpsCheck> check;
+        if (eps_check) {
+            check = pl::check_eps(r, chain);
+            if (check->warning) {
+                warnings.push_back(*check->warning);
+            }
+        }
         for (const auto& w : warnings) {
             io.warn(w);
         }
@@ -110,6 +120,6 @@ int main(int argc, char** argv) {
             pc::cli::write_cloud_file(cloud_out, r.labelled);
         }
         io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
-                            : pl::count_report(summary, gt, r.steps, warnings));
+                            : pl::count_report(summary, gt, r.steps, warnings, check));
     });
 }

@@ -194,6 +194,28 @@ TEST(PcFruitcount, ColourWordsRulesAndAGivenRadiusReachTheirSteps) {
     EXPECT_EQ(g["count"], sample_fruit_count());
 }
 
+TEST(PcFruitcount, EpsCheckWarnsWhenTheCountSwingsWithEps) {
+    // The author script's eps 0.0065 sits below this sample's ~7 mm spacing: at 0.8x every fruit
+    // falls apart into noise, at 1.25x they hold together. The default's lengths come from the
+    // cloud, and its count stays put.
+    const RunResult script =
+        run_shell("@pc_fruitcount --preset invnerfseg --eps-check -i " + kSample);
+    ASSERT_EQ(script.code, 0) << script.err;
+    const auto s = nlohmann::json::parse(script.out);
+    ASSERT_EQ(s["eps_check"]["eps"].size(), 3u);
+    EXPECT_EQ(s["eps_check"]["eps"][1], 0.0065);
+    EXPECT_EQ(s["eps_check"]["counts"][1], s["count"]);
+    ASSERT_FALSE(s["warnings"].empty());
+    EXPECT_NE(s["warnings"].back().get<std::string>().find("the count swings by more than 2x"),
+              std::string::npos);
+    EXPECT_NE(script.err.find("pc_fruitcount: warning: the count swings"), std::string::npos);
+    const RunResult dense = run_shell("@pc_fruitcount --eps-check -i " + kSample);
+    ASSERT_EQ(dense.code, 0) << dense.err;
+    const auto d = nlohmann::json::parse(dense.out);
+    EXPECT_EQ(d["eps_check"]["counts"], nlohmann::json::array({12, 12, 12}));
+    EXPECT_TRUE(d["warnings"].empty()) << dense.out;
+}
+
 TEST(PcDbscan, EpsKneeIsTheKDistanceKnee) {
     const RunResult r = run_shell("@pc_convert -i " + kSample +
                                   " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps knee "

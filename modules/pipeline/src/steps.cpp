@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -271,6 +272,54 @@ segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min
     return segmentation::summarize_clusters(io::XyzPoints(labelled).view(), labels, min_points);
 }
 
+EpsCheck check_eps(const ChainResult& chain,
+                   const ChainParams& p,
+                   const std::vector<double>& factors) {
+    const io::Blob& labelled = chain.labelled;
+    double eps_used = p.dbscan.eps;
+    for (const StepRecord& step : chain.steps) {
+        for (const auto& value : step.values) {
+            if (step.name == "dbscan" && value.first == "eps") {
+                eps_used = value.second;
+            }
+        }
+    }
+    std::vector<double> tried = factors;
+    tried.push_back(1.0);
+    std::sort(tried.begin(), tried.end());
+    EpsCheck out;
+    const Cloud points = labelled.size() ? io::xyz(labelled) : Cloud{};
+    for (double f : tried) {
+        std::size_t count = 0;
+        if (f == 1.0) {
+            count = summarize(labelled, p.count_min_points).clusters.size();
+        } else if (!points.empty()) {
+            segmentation::DbscanParams d = p.dbscan;
+            d.eps = f * eps_used;
+            std::vector<std::uint32_t> labels = segmentation::dbscan(points, d).labels;
+            if (p.split) {
+                labels = segmentation::recursive_split(XyzView(points), std::move(labels), *p.split)
+                             .labels;
+            }
+            count = segmentation::summarize_clusters(XyzView(points), labels, p.count_min_points)
+                        .clusters.size();
+        }
+        out.eps.push_back(f * eps_used);
+        out.counts.push_back(count);
+    }
+    const auto [lo, hi] = std::minmax_element(out.counts.begin(), out.counts.end());
+    if (*hi > 2 * *lo) {
+        std::string counts;
+        for (std::size_t k = 0; k < out.counts.size(); ++k) {
+            counts += (k ? ", " : "") + std::to_string(out.counts[k]) + " at eps " +
+                      format_number(out.eps[k]);
+        }
+        out.warning = "the count swings by more than 2x under a small change of eps (" + counts +
+                      "): eps is near a scale of this cloud; try --eps auto";
+    }
+    return out;
+}
+
 std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, std::size_t points) {
     std::vector<std::string> w;
     if (s.clusters.empty() && points > 0) {
@@ -294,7 +343,8 @@ std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, s
 std::string count_report(const segmentation::ClusterSummary& s,
                          std::optional<double> gt,
                          const std::vector<StepRecord>& steps,
-                         const std::vector<std::string>& warnings) {
+                         const std::vector<std::string>& warnings,
+                         const std::optional<EpsCheck>& eps_check) {
     using nlohmann::ordered_json;
     ordered_json j;
     j["count"] = s.clusters.size();
@@ -339,6 +389,9 @@ std::string count_report(const segmentation::ClusterSummary& s,
             st.push_back(step);
         }
         j["steps"] = st;
+    }
+    if (eps_check) {
+        j["eps_check"] = {{"eps", eps_check->eps}, {"counts", eps_check->counts}};
     }
     j["warnings"] = warnings;
     return j.dump(1) + "\n";

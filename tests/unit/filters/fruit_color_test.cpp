@@ -59,9 +59,9 @@ TEST(FruitColor, NaturalColoursKeepSaturatedNonFoliageOfAnyBrightness) {
 }
 
 TEST(FruitColor, AllGreenKeepsEverySaturatedPointAndSaysLeavesStay) {
-    const auto c = repeat({{{0.49f, 0.69f, 0.24f}, 100},   // green fruit
-                           {{0.24f, 0.49f, 0.18f}, 300},   // leaves
-                           {{0.20f, 0.19f, 0.21f}, 100}}); // ground
+    const auto c = repeat({{{0.49f, 0.69f, 0.24f}, 100},    // green fruit
+                           {{0.24f, 0.49f, 0.18f}, 300},    // leaves
+                           {{0.20f, 0.19f, 0.21f}, 100}});  // ground
     const FruitColorChoice r = choose_fruit_color(c, {});
     ASSERT_TRUE(r.rule);
     EXPECT_EQ(kept(c, r), 400u);
@@ -105,9 +105,9 @@ TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {
 }
 
 TEST(FruitColor, WordsReadBackAndBadInputIsRefused) {
-    for (FruitColor w : {FruitColor::kAuto, FruitColor::kMask, FruitColor::kRed,
-                         FruitColor::kOrange, FruitColor::kYellow, FruitColor::kGreen,
-                         FruitColor::kPurple, FruitColor::kAny}) {
+    for (FruitColor w :
+         {FruitColor::kAuto, FruitColor::kMask, FruitColor::kRed, FruitColor::kOrange,
+          FruitColor::kYellow, FruitColor::kGreen, FruitColor::kPurple, FruitColor::kAny}) {
         EXPECT_EQ(parse_fruit_color(fruit_color_name(w)), w);
     }
     EXPECT_THROW((void)parse_fruit_color("blue"), InvalidArgument);

@@ -70,6 +70,17 @@ struct ChainResult {
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
 
+/// The count again at other eps: DBSCAN and the split rerun on the points DBSCAN saw (the
+/// chain's labelled cloud), at `factors` × the eps its DBSCAN step used.
+struct EpsCheck {
+    std::vector<double> eps;             ///< eps tried, ascending, the one used among them
+    std::vector<std::size_t> counts;     ///< clusters counted at each
+    std::optional<std::string> warning;  ///< when the largest count exceeds twice the smallest
+};
+[[nodiscard]] EpsCheck check_eps(const ChainResult& chain,
+                                 const ChainParams& p,
+                                 const std::vector<double>& factors = {0.8, 1.25});
+
 /// The clusters of `label` in a labelled cloud (pc_count, pc_fruitcount); an empty cloud has none
 /// and needs no label field. Clusters with fewer than `min_points` points are not counted.
 [[nodiscard]] segmentation::ClusterSummary summarize(const io::Blob& labelled,
@@ -85,10 +96,11 @@ struct ChainResult {
 /// with `gt`: gt, error (count − gt), recovery (count / gt); `cluster_sizes` {median points,
 /// `several` (clusters over 1.75 x the median: several fruit?), `fragments` (under 0.25 x the
 /// median)}; then `steps` [{step, points_in, points_out, and the step's values}] when given (a
-/// chain), and `warnings` (always, possibly empty).
+/// chain), `eps_check` {eps, counts} when given, and `warnings` (always, possibly empty).
 [[nodiscard]] std::string count_report(const segmentation::ClusterSummary& s,
                                        std::optional<double> gt,
                                        const std::vector<StepRecord>& steps = {},
-                                       const std::vector<std::string>& warnings = {});
+                                       const std::vector<std::string>& warnings = {},
+                                       const std::optional<EpsCheck>& eps_check = {});
 
 }  // namespace pc::pipeline
