@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The condition matrix of docs/robustness.md: 240 scenes (bench/robustness/scenes.txt) counted by
 # each method, scored against their truth. One command:
-#     bash bench/robustness.sh [--split tune|held-out|all] [--methods "default word dense ..."]
+#     bash bench/robustness.sh [--split tune|held-out|held-out-2|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
 # needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), and any
@@ -37,7 +37,10 @@ has_word=0
 $b/pc_fruitcount --help | grep -q -- '--fruit-color' && has_word=1
 
 while IFS='|' read -r id part family mode rs noise colour units args; do
-  [ "$split" = all ] || [ "$part" = "$split" ] || continue
+  case $split in  # "all" is tune + held-out: the second held-out part is scored only by name
+    all) [ "$part" = held-out-2 ] && continue ;;
+    *) [ "$part" = "$split" ] || continue ;;
+  esac
   stem=$dir/scenes/$id
   if [ ! -f "$stem.json" ] || [ $b/pc_synth -nt "$stem.json" ]; then
     # shellcheck disable=SC2086
