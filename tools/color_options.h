@@ -54,35 +54,28 @@ inline void bind_color_options(cli::Tool& tool, ColorOptions& c, const std::stri
         prefix + filters::fruit_color_names() +
             ": auto decides from the cloud (mask exports: mean RGB > 0.5; natural colours: "
             "saturated and not foliage green); a word keeps that hue band; any keeps all");
-    const auto rule = [&](auto set) {
-        return [&c, set](const std::string& s) {
-            set(c.rules, s);
-            c.rules_given = true;
-        };
+    // A rule option: its text parsed by `parse(name, text)` into field `field` of the rules.
+    const auto rule = [&](const char* name, auto field, auto parse, const std::string& help) {
+        tool.option(
+            name, "off",
+            [&c, name, field, parse](const std::string& s) {
+                c.rules.*field = parse(name, s);
+                c.rules_given = true;
+            },
+            prefix + help);
     };
     using P = filters::ColorFilterParams;
-    tool.option("min-mean", "off", rule([](P& p, const std::string& s) {
-                    p.min_mean = cli::parse_double("min-mean", s);
-                }),
-                prefix + "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
-    tool.option("min-value", "off", rule([](P& p, const std::string& s) {
-                    p.min_value = cli::parse_double("min-value", s);
-                }),
-                prefix + "keep iff HSV value max(R,G,B) > this (strict >)");
-    tool.option("hue", "off", rule([](P& p, const std::string& s) {
-                    p.hue_deg = filters::parse_interval("hue", s);
-                }),
-                prefix +
-                    "keep iff hue in LO:HI degrees, ends included; LO > HI wraps (300:30); grey "
-                    "never matches");
-    tool.option("saturation", "off", rule([](P& p, const std::string& s) {
-                    p.saturation = filters::parse_interval("saturation", s);
-                }),
-                prefix + "keep iff HSV saturation in LO:HI (0..1), ends included");
-    tool.option("value", "off", rule([](P& p, const std::string& s) {
-                    p.value = filters::parse_interval("value", s);
-                }),
-                prefix + "keep iff HSV value in LO:HI (0..1), ends included");
+    rule("min-mean", &P::min_mean, cli::parse_double,
+         "keep iff (R+G+B)/3 > this; channels 0..1 (strict >)");
+    rule("min-value", &P::min_value, cli::parse_double,
+         "keep iff HSV value max(R,G,B) > this (strict >)");
+    rule("hue", &P::hue_deg, filters::parse_interval,
+         "keep iff hue in LO:HI degrees, ends included; LO > HI wraps (300:30); grey never "
+         "matches");
+    rule("saturation", &P::saturation, filters::parse_interval,
+         "keep iff HSV saturation in LO:HI (0..1), ends included");
+    rule("value", &P::value, filters::parse_interval,
+         "keep iff HSV value in LO:HI (0..1), ends included");
     tool.flag("invert", &c.invert, prefix + "keep the points the rules reject instead");
 }
 

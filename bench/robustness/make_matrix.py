@@ -26,32 +26,40 @@ COLOURS = {'mask': None, 'red': (190, 35, 40), 'purple': (75, 30, 65), 'orange':
            'yellow': (225, 200, 70), 'green': (125, 175, 60)}
 UNITS = {'m': '', 'mm': '--scale 1000', 'normalised': '--scale 0.45 --offset 0.1,-0.05,0.2'}
 
+SAMPLED = ('surface', 'sfm', 'stripes', 'volume')
+
+
+def draw(rng, families, colours, ids, part):
+    """One line per id; part(family, colour, mode) names its split (it may draw from rng)."""
+    for i in ids:
+        family = rng.choice(list(families))
+        mode = rng.choice(MODES)
+        rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
+        noise = rng.choice(NOISE) if mode in SAMPLED else 0
+        colour = rng.choice(list(colours))
+        shading = rng.choice([0, 0.6])
+        units = rng.choice(list(UNITS))
+        seed = rng.randrange(1, 10**6)
+        radius, flags = families[family]
+        args = f'{flags} --radius-spread 0.2 --mode {mode} --voxel {radius / rs:.6g} --seed {seed}'
+        if noise:
+            args += f' --noise {noise}'
+        if colour == 'mask':
+            args += ' --colors mask'
+        else:
+            args += ' --fruit-rgb ' + ','.join(map(str, colours[colour]))
+            if mode in SAMPLED:
+                args += f' --shading {shading}'
+        if UNITS[units]:
+            args += ' ' + UNITS[units]
+        yield f'{i:03d}|{part(family, colour, mode)}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}'
+
+
 rng = random.Random(2026)
-lines = []
-for i in range(1, 241):
-    family = rng.choice(list(FAMILIES))
-    mode = rng.choice(MODES)
-    rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
-    noise = rng.choice(NOISE) if mode in ('surface', 'sfm', 'stripes', 'volume') else 0
-    colour = rng.choice(list(COLOURS))
-    shading = rng.choice([0, 0.6])
-    units = rng.choice(list(UNITS))
-    seed = rng.randrange(1, 10**6)
-    radius, flags = FAMILIES[family]
-    spacing = radius / rs
-    args = f'{flags} --radius-spread 0.2 --mode {mode} --voxel {spacing:.6g} --seed {seed}'
-    if noise:
-        args += f' --noise {noise}'
-    if colour == 'mask':
-        args += ' --colors mask'
-    else:
-        args += ' --fruit-rgb ' + ','.join(map(str, COLOURS[colour]))
-        if mode in ('surface', 'sfm', 'stripes', 'volume'):
-            args += f' --shading {shading}'
-    if UNITS[units]:
-        args += ' ' + UNITS[units]
-    held = family == 'grape' or colour == 'yellow' or mode == 'stripes' or rng.random() < 0.2
-    lines.append(f'{i:03d}|{"held-out" if held else "tune"}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}')
+lines = list(draw(rng, FAMILIES, COLOURS, range(1, 241),
+                  lambda family, colour, mode: 'held-out' if (
+                      family == 'grape' or colour == 'yellow' or mode == 'stripes' or rng.random() < 0.2)
+                  else 'tune'))
 
 # A second held-out part, drawn after the first was scored (session 18) and never looked at
 # since: new seeds, and a family and a colour no method has seen (tomato-like trusses: 25 mm,
@@ -61,29 +69,8 @@ FAMILIES2['truss'] = (0.025, '--species plum --fruit-radius 0.025 --bunch-min 3 
                              '--touch-gap 0.002 --overlap 0.05 --fruit-count 80 --canopy 0.6,0.6,0.5')
 COLOURS2 = dict(COLOURS)
 COLOURS2['brown'] = (140, 70, 40)
-rng2 = random.Random(2027)
-for i in range(241, 341):
-    family = rng2.choice(list(FAMILIES2))
-    mode = rng2.choice(MODES)
-    rs = rng2.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
-    noise = rng2.choice(NOISE) if mode in ('surface', 'sfm', 'stripes', 'volume') else 0
-    colour = rng2.choice(list(COLOURS2))
-    shading = rng2.choice([0, 0.6])
-    units = rng2.choice(list(UNITS))
-    seed = rng2.randrange(1, 10**6)
-    radius, flags = FAMILIES2[family]
-    args = f'{flags} --radius-spread 0.2 --mode {mode} --voxel {radius / rs:.6g} --seed {seed}'
-    if noise:
-        args += f' --noise {noise}'
-    if colour == 'mask':
-        args += ' --colors mask'
-    else:
-        args += ' --fruit-rgb ' + ','.join(map(str, COLOURS2[colour]))
-        if mode in ('surface', 'sfm', 'stripes', 'volume'):
-            args += f' --shading {shading}'
-    if UNITS[units]:
-        args += ' ' + UNITS[units]
-    lines.append(f'{i:03d}|held-out-2|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}')
+lines += draw(random.Random(2027), FAMILIES2, COLOURS2, range(241, 341),
+              lambda family, colour, mode: 'held-out-2')
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
 with open(out, 'w') as f:

@@ -86,12 +86,16 @@ TEST(Chain, FieldsPassThroughTheWholeChain) {
     EXPECT_NE(r.out.find("fields x y z rgb label\n"), std::string::npos) << r.out;
 }
 
-TEST(PcDbscan, EpsAutoReportsTheChosenValueWithVerbose) {
-    const RunResult r = run_shell("@pc_convert -i " + kSample +
-                                  " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps auto "
-                                  "--min-points 4 -v | @pc_count --plain");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps = 4 x spacing "), std::string::npos) << r.err;
+TEST(PcDbscan, EpsAutoAndKneeReportTheChosenValueWithVerbose) {
+    // auto: 4 x the point spacing; knee: the k-distance knee.
+    for (const auto& [eps, said] : {std::pair{"auto", "pc_dbscan: dbscan: eps = 4 x spacing "},
+                                    std::pair{"knee", "pc_dbscan: dbscan: eps knee = "}}) {
+        const RunResult r = run_shell("@pc_convert -i " + kSample +
+                                      " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps " +
+                                      std::string(eps) + " --min-points 4 -v | @pc_count --plain");
+        ASSERT_EQ(r.code, 0) << r.err;
+        EXPECT_NE(r.err.find(said), std::string::npos) << r.err;
+    }
 }
 
 TEST(PcDbscan, BadEpsIsAUsageError) {
@@ -214,14 +218,6 @@ TEST(PcFruitcount, EpsCheckWarnsWhenTheCountSwingsWithEps) {
     const auto d = nlohmann::json::parse(dense.out);
     EXPECT_EQ(d["eps_check"]["counts"], nlohmann::json::array({12, 12, 12}));
     EXPECT_TRUE(d["warnings"].empty()) << dense.out;
-}
-
-TEST(PcDbscan, EpsKneeIsTheKDistanceKnee) {
-    const RunResult r = run_shell("@pc_convert -i " + kSample +
-                                  " | @pc_colorfilter --min-mean 0.5 | @pc_dbscan --eps knee "
-                                  "--min-points 4 -v | @pc_count --plain");
-    ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.err.find("pc_dbscan: dbscan: eps knee = "), std::string::npos) << r.err;
 }
 
 TEST(PcVoxel, CollapsesPointsAndKeepsFields) {

@@ -16,34 +16,25 @@ bool passes(const io::Rgb& c, const ColorFilterParams& p) {
     if (!(std::isfinite(r) && std::isfinite(g) && std::isfinite(b))) {
         return false;
     }
-    const double mx = std::max({r, g, b});
-    const double mn = std::min({r, g, b});
+    const Hsv x = hsv(c);
     if (p.min_mean && !((r + g + b) / 3.0 > *p.min_mean)) {
         return false;
     }
-    if (p.min_value && !(mx > *p.min_value)) {
+    if (p.min_value && !(x.v > *p.min_value)) {
         return false;
     }
-    if (p.value && !in(mx, *p.value)) {
+    if (p.value && !in(x.v, *p.value)) {
         return false;
     }
-    if (p.saturation && !in(mx > 0 ? (mx - mn) / mx : 0.0, *p.saturation)) {
+    if (p.saturation && !in(x.s, *p.saturation)) {
         return false;
     }
     if (p.hue_deg) {
-        if (mx == mn) {
+        if (x.h < 0) {
             return false;  // grey has no hue
         }
-        const double d = mx - mn;
-        double h = mx == r   ? std::fmod((g - b) / d, 6.0)
-                   : mx == g ? (b - r) / d + 2
-                             : (r - g) / d + 4;
-        h *= 60.0;
-        if (h < 0) {
-            h += 360.0;
-        }
         const Interval& w = *p.hue_deg;
-        const bool hit = w.lo <= w.hi ? in(h, w) : (h >= w.lo || h <= w.hi);
+        const bool hit = w.lo <= w.hi ? in(x.h, w) : (x.h >= w.lo || x.h <= w.hi);
         if (!hit) {
             return false;
         }
@@ -52,6 +43,20 @@ bool passes(const io::Rgb& c, const ColorFilterParams& p) {
 }
 
 }  // namespace
+
+Hsv hsv(const io::Rgb& c) {
+    const double r = c.r, g = c.g, b = c.b;
+    const double mx = std::max({r, g, b}), mn = std::min({r, g, b});
+    Hsv out{-1, mx > 0 ? (mx - mn) / mx : 0.0, mx};
+    if (mx > mn) {
+        const double d = mx - mn;
+        const double h = 60.0 * (mx == r   ? std::fmod((g - b) / d, 6.0)
+                                 : mx == g ? (b - r) / d + 2
+                                           : (r - g) / d + 4);
+        out.h = h < 0 ? h + 360.0 : h;
+    }
+    return out;
+}
 
 Interval parse_interval(const std::string& option, const std::string& text) {
     const auto colon = text.find(':');

@@ -17,24 +17,6 @@ constexpr std::pair<std::string_view, FruitColor> kWords[] = {
 /// Foliage: hue 70..170 degrees (yellow-green to cyan-green).
 constexpr Interval kFoliage{70, 170};
 
-struct Hsv {
-    double h = -1, s = 0, v = 0;  ///< h < 0: grey (no hue)
-};
-
-Hsv hsv(const io::Rgb& c) {
-    const double r = c.r, g = c.g, b = c.b;
-    const double mx = std::max({r, g, b}), mn = std::min({r, g, b});
-    Hsv out{-1, mx > 0 ? (mx - mn) / mx : 0.0, mx};
-    if (mx > mn) {
-        const double d = mx - mn;
-        double h = mx == r   ? std::fmod((g - b) / d, 6.0)
-                   : mx == g ? (b - r) / d + 2
-                             : (r - g) / d + 4;
-        out.h = h * 60 < 0 ? h * 60 + 360 : h * 60;
-    }
-    return out;
-}
-
 ColorFilterParams hue_rule(Interval hue, double min_saturation) {
     return {.hue_deg = hue, .saturation = Interval{min_saturation, 1}, .value = Interval{0.04, 1}};
 }

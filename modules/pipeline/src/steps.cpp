@@ -179,11 +179,11 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
     io::set_field(in, "label", r.labels);
+    const bool spheres = p.rule == segmentation::SplitRule::kSpheres;
     const std::string how =
-        p.rule == segmentation::SplitRule::kSpheres
-            ? "fruit centres found by normals voting (spacing " + format_number(r.spacing) +
-                  ", fruit radius " + format_number(r.fruit_radius) +
-                  (p.fruit_radius > 0 ? " given" : " estimated") + ")"
+        spheres ? "fruit centres found by normals voting (spacing " + format_number(r.spacing) +
+                      ", fruit radius " + format_number(r.fruit_radius) +
+                      (p.fruit_radius > 0 ? " given" : " estimated") + ")"
         : p.rule == segmentation::SplitRule::kCores
             ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
                   ", estimated fruit radius " + format_number(r.fruit_radius) +
@@ -194,14 +194,12 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                   ", AABB volume > " + format_number(r.volume_threshold) + ")";
     const std::size_t n = in.size();
     Step step{std::move(in),
-              "recursive_split: " + std::to_string(r.splits) + " " + how + ", " +
-                  std::to_string(r.cluster_count) + " clusters",
+              "recursive_split: " + std::to_string(spheres ? r.peaks : r.splits) + " " + how +
+                  ", " + std::to_string(r.cluster_count) + " clusters",
               {"recursive_split", n, n, {}},
               {}};
-    if (p.rule == segmentation::SplitRule::kSpheres) {
+    if (spheres) {
         step.record.values = {{"spacing", r.spacing}, {"fruit_radius", r.fruit_radius}};
-        step.note = "recursive_split: " + std::to_string(r.peaks) + " " + how + ", " +
-                    std::to_string(r.cluster_count) + " clusters";
         if (r.cluster_count > 0 && !(r.fruit_radius > 0)) {
             step.warnings.push_back(
                 "recursive_split could not estimate the fruit radius (spacing " +
@@ -332,8 +330,9 @@ std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, s
     for (const auto& c : s.clusters) {
         sizes.push_back(static_cast<double>(c.points));
     }
-    if (!sizes.empty() && median(sizes) < 40) {
-        w.push_back("the median cluster has only " + format_number(median(sizes)) +
+    const double typical = sizes.empty() ? 0.0 : median(sizes);
+    if (!sizes.empty() && typical < 40) {
+        w.push_back("the median cluster has only " + format_number(typical) +
                     " points: at this resolution touching fruit merge or split by chance; treat "
                     "the count as rough");
     }

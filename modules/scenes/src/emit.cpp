@@ -4,10 +4,6 @@
 
 namespace pc::scenes::detail {
 
-namespace {
-constexpr double kPi = 3.141592653589793;
-}
-
 void add_ground_and_outliers(
     const Scene& s, const RenderParams& p, std::size_t fruit_total, Rng& rng, Rendered& out) {
     const double ground = 1.5 * std::max(s.canopy[0], s.canopy[1]);

@@ -3,8 +3,10 @@
 // ground and outlier clutter, the final shuffle, small vector algebra).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <utility>
 
 #include <pc/core/random.h>
 #include <pc/scenes/render.h>
@@ -18,6 +20,17 @@ inline Vec3 cross(const Vec3& a, const Vec3& b) {
 }
 inline Vec3 scaled(const Vec3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
 inline Vec3 unit(const Vec3& a) { return scaled(a, 1.0 / std::sqrt(dot(a, a))); }
+
+/// Two unit vectors perpendicular to unit `d` and to each other.
+inline std::pair<Vec3, Vec3> basis(const Vec3& d) {
+    const Vec3 helper = std::abs(d[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+    const Vec3 a = unit(cross(d, helper));
+    return {a, cross(d, a)};
+}
+
+inline constexpr double kPi = 3.141592653589793;
+/// Leaves' colour in natural colours (mask colours paint them near black).
+inline constexpr std::array<std::uint8_t, 3> kLeafRgb{60, 125, 45};
 
 /// Packs 0x00RRGGBB from channels rounded and clamped to 0..255.
 inline std::uint32_t pack(double r, double g, double b) {

@@ -20,19 +20,10 @@ using namespace detail;
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
 void require(bool ok, const std::string& what) {
     if (!ok) {
         throw InvalidArgument("render: " + what);
     }
-}
-
-/// Two unit vectors perpendicular to unit `d` and to each other.
-std::pair<Vec3, Vec3> basis(const Vec3& d) {
-    const Vec3 helper = std::abs(d[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-    const Vec3 a = unit(cross(d, helper));
-    return {a, cross(d, a)};
 }
 
 /// A voxel of the global lattice: centre ((i + 0.5) v, (j + 0.5) v, (k + 0.5) v).
@@ -102,8 +93,6 @@ std::vector<Voxel> leaf_voxels(const Leaf& l,
     }
     return out;
 }
-
-constexpr std::array<std::uint8_t, 3> kLeafRgb{60, 125, 45};
 
 /// Adds points with colours; owns the colour model.
 class Output {
@@ -308,14 +297,6 @@ constexpr std::pair<std::string_view, Colors> kColors[] = {{"natural", Colors::k
 Mode parse_mode(const std::string& text) { return parse_name<Mode>(kModes, text, "--mode"); }
 
 std::string mode_name(Mode mode) { return name_of<Mode>(kModes, mode); }
-
-std::string mode_names() {
-    std::string words;
-    for (const auto& [word, mode] : kModes) {
-        words += (words.empty() ? "" : ", ") + std::string(word);
-    }
-    return words;
-}
 
 Colors parse_colors(const std::string& text) {
     return parse_name<Colors>(kColors, text, "--colors");

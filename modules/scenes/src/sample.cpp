@@ -12,9 +12,6 @@ namespace pc::scenes::detail {
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-constexpr std::array<std::uint8_t, 3> kLeaf{60, 125, 45};
-
 const Vec3& light() {
     static const Vec3 l = unit({0.3, 0.2, 1.0});
     return l;
@@ -30,7 +27,7 @@ public:
         return paint(base, tone, std::max(0.0, dot(normal, light())), true);
     }
     std::uint32_t leaf(const Vec3& normal) {
-        return paint(kLeaf, 1.0, std::abs(dot(normal, light())), false);
+        return paint(kLeafRgb, 1.0, std::abs(dot(normal, light())), false);
     }
 
 private:
@@ -120,8 +117,7 @@ public:
             if (rng_.uniform() >= p_.leaf_leak) {
                 continue;
             }
-            const Vec3 helper = std::abs(l.normal[0]) < 0.9 ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-            const Vec3 e1 = unit(cross(l.normal, helper)), e2 = cross(l.normal, e1);
+            const auto [e1, e2] = basis(l.normal);
             for (auto n = std::llround(kPi * l.radius * l.radius / (v * v)); n > 0; --n) {
                 const double rho = l.radius * std::sqrt(rng_.uniform()),
                              phi = rng_.uniform(0, 2 * kPi);

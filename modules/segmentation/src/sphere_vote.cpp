@@ -204,25 +204,25 @@ double radius_from_normals(const Sample& s, const Normals& nm) {
 /// The median over clusters (10 sampled points or more) of the RMS distance from their centroid:
 /// a first, rough fruit size.
 double rough_size(const Sample& s) {
-    std::unordered_map<std::uint32_t, std::pair<V3, std::vector<V3>>> by;
+    std::unordered_map<std::uint32_t, std::vector<V3>> by;
     for (std::size_t i = 0; i < s.view.size; ++i) {
-        by[s.label[i]].second.push_back(vec(s.view[i]));
+        by[s.label[i]].push_back(vec(s.view[i]));
     }
     std::vector<double> rms;
-    for (auto& [label, c] : by) {
-        if (c.second.size() < 10) {
+    for (const auto& [label, c] : by) {
+        if (c.size() < 10) {
             continue;
         }
         V3 mean = V3::Zero();
-        for (const V3& p : c.second) {
+        for (const V3& p : c) {
             mean += p;
         }
-        mean /= static_cast<double>(c.second.size());
+        mean /= static_cast<double>(c.size());
         double sum = 0;
-        for (const V3& p : c.second) {
+        for (const V3& p : c) {
             sum += (p - mean).squaredNorm();
         }
-        rms.push_back(std::sqrt(sum / static_cast<double>(c.second.size())));
+        rms.push_back(std::sqrt(sum / static_cast<double>(c.size())));
     }
     return rms.empty() ? 0.0 : median(rms);
 }

@@ -14,9 +14,12 @@
 #include <pc/segmentation/core_split.h>
 
 #include "support/clouds.h"
+#include "support/partition.h"
 
 namespace pc::segmentation {
 namespace {
+
+using test::misassigned;
 
 /// Lattice points (spacing 1) inside a ball: what an explicit voxel reconstruction exports.
 void add_solid(Cloud& c,
@@ -53,33 +56,6 @@ bool same_partition(const std::vector<std::uint32_t>& got, const std::vector<std
         }
     }
     return true;
-}
-
-/// Points whose label is not the majority label of their true object, or -1 when two objects
-/// share a majority label (a merge).
-long misassigned(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& truth) {
-    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
-    for (std::size_t k = 0; k < got.size(); ++k) {
-        ++votes[truth[k]][got[k]];
-    }
-    long wrong = 0;
-    std::set<std::uint32_t> used;
-    for (const auto& [id, v] : votes) {
-        long best = 0, all = 0;
-        std::uint32_t label = 0;
-        for (const auto& [l, n] : v) {
-            if (n > best) {
-                best = n;
-                label = l;
-            }
-            all += n;
-        }
-        if (!used.insert(label).second) {
-            return -1;
-        }
-        wrong += all - best;
-    }
-    return wrong;
 }
 
 struct Scene {

@@ -12,8 +12,12 @@
 #include <pc/core/random.h>
 #include <pc/segmentation/sphere_vote.h>
 
+#include "support/partition.h"
+
 namespace pc::segmentation {
 namespace {
+
+using test::misassigned;
 
 struct Scene {
     Cloud cloud;
@@ -99,55 +103,19 @@ std::vector<std::pair<std::vector<Ball>, std::uint32_t>> layout(double r) {
              4}};
 }
 
-Scene hollow(double r) {
+/// The layout's fruit made of points by `add` (add_shells or add_solids), ids 1.. in order.
+Scene made(double r, void (*add)(Scene&, const std::vector<Ball>&, std::uint32_t, std::uint32_t)) {
     Scene s;
     std::uint32_t id = 1;
     for (const auto& [balls, cluster] : layout(r)) {
-        add_shells(s, balls, id, cluster);
+        add(s, balls, id, cluster);
         id += static_cast<std::uint32_t>(balls.size());
     }
     return s;
 }
 
-Scene solid(double r) {
-    Scene s;
-    std::uint32_t id = 1;
-    for (const auto& [balls, cluster] : layout(r)) {
-        add_solids(s, balls, id, cluster);
-        id += static_cast<std::uint32_t>(balls.size());
-    }
-    return s;
-}
-
-/// Points whose label is not the majority label of their true object (truth 0, not fruit, is not
-/// an object), or -1 when two objects share a majority label (a merge) or one's is noise.
-long misassigned(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& truth) {
-    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
-    for (std::size_t k = 0; k < got.size(); ++k) {
-        ++votes[truth[k]][got[k]];
-    }
-    long wrong = 0;
-    std::set<std::uint32_t> used;
-    for (const auto& [id, v] : votes) {
-        if (id == 0) {
-            continue;
-        }
-        long best = 0, all = 0;
-        std::uint32_t label = 0;
-        for (const auto& [l, n] : v) {
-            if (n > best) {
-                best = n;
-                label = l;
-            }
-            all += n;
-        }
-        if (label == 0 || !used.insert(label).second) {
-            return -1;
-        }
-        wrong += all - best;
-    }
-    return wrong;
-}
+Scene hollow(double r) { return made(r, add_shells); }
+Scene solid(double r) { return made(r, add_solids); }
 
 TEST(SphereVote, HollowBunchIsCutIntoItsSpheresAndTheRadiusFound) {
     const Scene s = hollow(10);

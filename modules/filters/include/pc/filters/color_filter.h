@@ -14,6 +14,13 @@ struct Interval {
     double lo = 0, hi = 0;
 };
 
+/// A colour in HSV: hue in degrees [0, 360), or -1 for grey (R = G = B: no hue); saturation
+/// (max − min) / max (0 for black) and value max(R, G, B), channels in [0, 1].
+struct Hsv {
+    double h = -1, s = 0, v = 0;
+};
+[[nodiscard]] Hsv hsv(const io::Rgb& c);
+
 /// Parses "LO:HI" (two numbers); throws pc::InvalidArgument naming `option`.
 [[nodiscard]] Interval parse_interval(const std::string& option, const std::string& text);
 

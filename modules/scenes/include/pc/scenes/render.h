@@ -35,8 +35,6 @@ enum class Colors {
 /// Parses "explicit", "implicit" or "degraded"; throws pc::InvalidArgument.
 [[nodiscard]] Mode parse_mode(const std::string& text);
 [[nodiscard]] std::string mode_name(Mode mode);
-/// The mode names in order, for --help.
-[[nodiscard]] std::string mode_names();
 /// Parses "natural" or "mask"; throws pc::InvalidArgument.
 [[nodiscard]] Colors parse_colors(const std::string& text);
 [[nodiscard]] std::string colors_name(Colors colors);

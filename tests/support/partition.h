@@ -1,0 +1,42 @@
+#pragma once
+// Scoring a labelling against the true objects, for the splitters' tests.
+
+#include <cstdint>
+#include <map>
+#include <set>
+#include <vector>
+
+namespace pc::test {
+
+/// Points whose label is not the majority label of their true object (truth 0, not fruit, is
+/// no object), or -1 when two objects share a majority label (a merge) or one's is noise (0).
+inline long misassigned(const std::vector<std::uint32_t>& got,
+                        const std::vector<std::uint32_t>& truth) {
+    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ++votes[truth[k]][got[k]];
+    }
+    long wrong = 0;
+    std::set<std::uint32_t> used;
+    for (const auto& [id, v] : votes) {
+        if (id == 0) {
+            continue;
+        }
+        long best = 0, all = 0;
+        std::uint32_t label = 0;
+        for (const auto& [l, n] : v) {
+            if (n > best) {
+                best = n;
+                label = l;
+            }
+            all += n;
+        }
+        if (label == 0 || !used.insert(label).second) {
+            return -1;
+        }
+        wrong += all - best;
+    }
+    return wrong;
+}
+
+}  // namespace pc::test
