@@ -5,7 +5,7 @@
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
 # needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), and any
-# preset name (--preset NAME).
+# preset name (--preset NAME); x:OPT,OPT,... tries options (x:--no-knn,--eps,3xs).
 # Scores: F1 of one-to-one matching at IoU > 0.5 and count error, both against the fruit present in
 # the cloud (a fruit the export lost cannot be counted). Rows: build/robustness/rows-SPLIT.csv.
 set -euo pipefail
@@ -53,6 +53,7 @@ while IFS='|' read -r id part family mode rs noise colour units args; do
       word) [ $has_word = 1 ] || continue; extra=(--fruit-color "$colour") ;;
       nocolor) extra=(--no-color) ;;
       cores) extra=(--rule cores) ;;
+      x:*) IFS=, read -r -a extra <<<"${method#x:}" ;;
       *) extra=(--preset "$method") ;;
     esac
     start=$(date +%s.%N)

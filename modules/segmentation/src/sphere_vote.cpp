@@ -630,6 +630,7 @@ void SphereVoteParams::validate() const {
         throw InvalidArgument("sphere_vote: fruit_radius must be >= 0 (0: estimate)");
     }
     positive(normal_scale, "normal_scale");
+    positive(min_normal_scale, "min_normal_scale");
     positive(cell, "cell");
     positive(peak_radius, "peak_radius");
     positive(peak_separation, "peak_separation");
@@ -685,9 +686,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     if (!(ss > 0) || !(first > 0)) {
         return done();
     }
-    // Neighbourhoods of at least 3 spacings; the points thinned so that one holds about 50.
+    // Neighbourhoods of at least min_normal_scale spacings; the points thinned so that one holds
+    // about 50.
     const auto normals = [&](const Sample& base, double h, Sample& used) {
-        h = std::max(h, 3 * ss);
+        h = std::max(h, params.min_normal_scale * ss);
         const auto stride = static_cast<std::size_t>(std::pow(h / (6 * ss), 2));
         used = stride > 1 ? thinned(points, base.at, labels, stride) : base;
         used.view = points.subset(used.at);

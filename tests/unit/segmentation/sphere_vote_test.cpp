@@ -177,6 +177,20 @@ TEST(SphereVote, NoisySmallFruitAreCountedOnceEach) {
     EXPECT_GE(misassigned(r.labels, s.truth), 0);
 }
 
+TEST(SphereVote, FruitOfTwoSpacingsARadiusAreFoundWithTheirRadius) {
+    // Near the smallest fruit the matrix has (docs/robustness.md): balls and shells of radius 2.3
+    // on a unit lattice or spiral. Neighbourhoods of at least 3 spacings (the former floor)
+    // spanned the whole fruit: R came out too large and the solid bunch stayed whole (4 parts).
+    // (Radius 2.01 on the lattice is a 32-point cube-like shape whose R reads as 1.2.)
+    for (const bool is_solid : {true, false}) {
+        const Scene s = is_solid ? solid(2.3) : hollow(2.3);
+        const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+        EXPECT_EQ(r.cluster_count, 7u) << is_solid;
+        EXPECT_NEAR(r.fruit_radius, 2, 0.6) << is_solid;
+        EXPECT_GE(misassigned(r.labels, s.truth), 0);
+    }
+}
+
 TEST(SphereVote, AGivenRadiusIsUsedAsIs) {
     const Scene s = hollow(10);
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 10});

@@ -12,9 +12,12 @@ namespace pc::segmentation {
 /// when the cloud is scaled or rotated.
 struct SphereVoteParams {
     double fruit_radius = 0;    ///< prior R in the cloud's units; 0: estimated from the cloud
-    double normal_scale = 1.0;  ///< × R: the neighbourhood a voting normal is fitted to (>= 3 s)
-    double cell = 0.25;         ///< × R: the vote accumulator's cells
-    double peak_radius = 0.4;   ///< × R: votes within this of a peak support it
+    double normal_scale = 1.0;  ///< × R: the neighbourhood a voting normal is fitted to ...
+    /// ... and × s: at least this (3 s over-estimated R and found a third of the fruit at 2 s a
+    /// radius; below 2 s a neighbourhood holds too few points for a plane)
+    double min_normal_scale = 2.0;
+    double cell = 0.25;            ///< × R: the vote accumulator's cells
+    double peak_radius = 0.4;      ///< × R: votes within this of a peak support it
     double peak_separation = 0.8;  ///< × R: peaks closer than this are one fruit
     double min_support = 0.1;      ///< a peak needs this × the median peak's support
     /// ... and voters from more than one side: the length of their mean direction to it at most
