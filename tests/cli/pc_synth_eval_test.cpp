@@ -120,6 +120,10 @@ TEST(PcFruitcount, DefaultCountsSamplingKindsColoursAndUnits) {
         "--offset 0.1,-0.05,0.2",
         // random surface points jittered by 10 % of the radius, 8 spacings a radius
         "--species peach --mode surface --voxel 0.0044 --noise 0.1 --fruit-rgb 190,35,40",
+        // scanner lines across interpenetrating cherries, 8 line spacings a radius, shaded
+        // (lines through the points, not the normals' feet, measured R 20 % large: F1 0.78)
+        "--species plum --fruit-radius 0.012 --bunch-min 2 --bunch-max 6 --touch-gap 0.001 "
+        "--overlap 0.1 --mode stripes --voxel 0.0015 --fruit-rgb 235,140,45 --shading 0.6",
     };
     for (const std::string& scene : scenes) {
         TempDir dir;
