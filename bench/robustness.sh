@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The condition matrix of docs/robustness.md: 240 scenes (bench/robustness/scenes.txt) counted by
+# The condition matrix of docs/robustness.md: 440 scenes (bench/robustness/scenes.txt) counted by
 # each method, scored against their truth. One command:
-#     bash bench/robustness.sh [--split tune|held-out|held-out-2|all] [--methods "default word ..."]
+#     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
 # needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), and any
@@ -33,12 +33,12 @@ dir=build/robustness
 mkdir -p "$dir/scenes"
 rows=$dir/rows-$split.csv
 echo "id,split,family,mode,r_over_s,noise,colour,units,method,present,count,f1,count_error,seconds,warnings" >"$rows"
-has_word=0
-$b/pc_fruitcount --help | grep -q -- '--fruit-color' && has_word=1
+# the colour words pc_fruitcount knows (scenes of other colours have no `word` row)
+words=$($b/pc_fruitcount --help | tr -s ' \n' ' ' | grep -o -- '--fruit-color arg[^:]*: [a-z, ]*' || true)
 
 while IFS='|' read -r id part family mode rs noise colour units args; do
-  case $split in  # "all" is tune + held-out: the second held-out part is scored only by name
-    all) [ "$part" = held-out-2 ] && continue ;;
+  case $split in  # "all" is every part scored so far: the newest held-out part only by name
+    all) [ "$part" = held-out-3 ] && continue ;;
     *) [ "$part" = "$split" ] || continue ;;
   esac
   stem=$dir/scenes/$id
@@ -50,7 +50,7 @@ while IFS='|' read -r id part family mode rs noise colour units args; do
   for method in $methods; do
     case $method in
       default) extra=() ;;
-      word) [ $has_word = 1 ] || continue; extra=(--fruit-color "$colour") ;;
+      word) grep -qw -- "$colour" <<<"$words" || continue; extra=(--fruit-color "$colour") ;;
       nocolor) extra=(--no-color) ;;
       cores) extra=(--rule cores) ;;
       x:*) IFS=, read -r -a extra <<<"${method#x:}" ;;
@@ -78,6 +78,7 @@ table=$(awk -F, -v first="${methods%% *}" '
   function add(key) { n[key]++; f[key] += $12; e = $13 < 0 ? -$13 : $13; ae[key] += e
                       if (e > 0.2) off[key]++; if ($11 <= 0) zero[key]++; t[key] += $14
                       if (!(key in worst) || $12 < worst[key]) worst[key] = $12 }
+  function rank(part) { return part == "tune" ? 0 : part == "held-out" ? 1 : 1 + substr(part, 10) }
   function sorted(prefix, out,   k, m, i, j, x) {
     m = 0; for (k in n) if (index(k, prefix) == 1) out[++m] = k
     for (i = 1; i <= m; i++) for (j = i + 1; j <= m; j++) if (out[j] < out[i]) { x = out[i]; out[i] = out[j]; out[j] = x }
@@ -93,16 +94,19 @@ table=$(awk -F, -v first="${methods%% *}" '
       printf "| %s | %s | %d | %.3f | %.3f | %.1f%% | %d | %d | %.2f |\n", p[2], p[3], n[K[i]], f[K[i]] / n[K[i]], worst[K[i]],
         100 * ae[K[i]] / n[K[i]], off[K[i]], zero[K[i]], t[K[i]] / n[K[i]] }
     print ""
-    print "Method `" first "` by condition (r/s: fruit radius in point spacings; tune | held-out):"
+    np = 0; for (k in n) { split(k, p, "|"); if (!(p[3] in seen) && p[3] != "all") { seen[p[3]] = 1; parts[++np] = p[3] } }
+    for (i = 1; i <= np; i++) for (j = i + 1; j <= np; j++) if (rank(parts[j]) < rank(parts[i])) { x = parts[i]; parts[i] = parts[j]; parts[j] = x }
+    print "Method `" first "` by condition (r/s: fruit radius in point spacings; per part: scenes, mean F1, worst F1, off by > 20 %):"
     print ""
-    print "| Condition | Scenes | Mean F1 | Worst F1 | Off > 20 % | Scenes held out | Mean F1 | Worst F1 | Off > 20 % |"
-    print "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    head = "| Condition |"; rule = "| --- |"
+    for (i = 1; i <= np; i++) { head = head " " parts[i] " | F1 | worst | off |"; rule = rule " ---: | ---: | ---: | ---: |" }
+    print head; print rule
     m = sorted("C|", K)
     for (i = 1; i <= m; i++) { split(K[i], p, "|"); c = p[2]; if (c in shown) continue; shown[c] = 1
-      a = "C|" c "|tune"; h = "C|" c "|held-out"
-      ta = n[a] ? sprintf("%d | %.3f | %.3f | %d", n[a], f[a] / n[a], worst[a], off[a]) : "0 | - | - | -"
-      th = n[h] ? sprintf("%d | %.3f | %.3f | %d", n[h], f[h] / n[h], worst[h], off[h]) : "0 | - | - | -"
-      printf "| %s | %s | %s |\n", c, ta, th }
+      line = "| " c " |"
+      for (q = 1; q <= np; q++) { a = "C|" c "|" parts[q]
+        line = line (n[a] ? sprintf(" %d | %.3f | %.3f | %d |", n[a], f[a] / n[a], worst[a], off[a]) : " 0 | - | - | - |") }
+      print line }
   }' "$rows")
 echo "$table"
 if [ $write_docs = 1 ]; then

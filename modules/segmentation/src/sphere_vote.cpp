@@ -212,14 +212,17 @@ double radius_from_normals(const Sample& s, const Normals& nm, bool feet) {
     return dist.size() < 50 ? 0.0 : log_mode(dist);
 }
 
-/// The median over clusters (10 sampled points or more) of the RMS distance from their centroid:
-/// a first, rough fruit size.
-double rough_size(const Sample& s) {
+/// A first, rough fruit size: the RMS distance of a cluster's points from its centroid, the
+/// median over clusters of 10 sampled points or more; over points (each counts its cluster's)
+/// when DBSCAN left fragments, so that the many small pieces of each fruit do not set it (an SfM
+/// fruit 20 spacings wide, its far side ten times sparser, came apart into 590 pieces for 50
+/// fruit and this size was a fifth of theirs).
+double rough_size(const Sample& s, bool fragments) {
     std::unordered_map<std::uint32_t, std::vector<V3>> by;
     for (std::size_t i = 0; i < s.view.size; ++i) {
         by[s.label[i]].push_back(vec(s.view[i]));
     }
-    std::vector<double> rms;
+    std::vector<double> rms, per_point;
     for (const auto& [label, c] : by) {
         if (c.size() < 10) {
             continue;
@@ -234,8 +237,11 @@ double rough_size(const Sample& s) {
             sum += (p - mean).squaredNorm();
         }
         rms.push_back(std::sqrt(sum / static_cast<double>(c.size())));
+        if (fragments) {
+            per_point.insert(per_point.end(), c.size(), rms.back());
+        }
     }
-    return rms.empty() ? 0.0 : median(rms);
+    return rms.empty() ? 0.0 : median(fragments ? per_point : rms);
 }
 
 /// floor(v) as an integer, clamped far beyond any key's range (no overflow for huge or tiny
@@ -646,6 +652,7 @@ void SphereVoteParams::validate() const {
     positive(peak_radius, "peak_radius");
     positive(peak_separation, "peak_separation");
     positive(reach, "reach");
+    positive(fragment_points, "fragment_points");
     if (!(min_support >= 0 && min_support <= 1)) {
         throw InvalidArgument("sphere_vote: min_support must be in [0, 1]");
     }
@@ -693,7 +700,16 @@ SphereVoteResult sphere_vote(const XyzView& points,
                                (members.size() + params.max_samples - 1) / params.max_samples);
     const double ss = search::median_spacing(all.view);
     r.spacing = ss;
-    const double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all);
+    std::unordered_map<std::uint32_t, double> sizes;
+    for (const std::uint32_t i : members) {
+        sizes[labels[i]] += 1;
+    }
+    std::vector<double> size_list;
+    for (const auto& [label, n] : sizes) {
+        size_list.push_back(n);
+    }
+    const bool fragments = median(size_list) < params.fragment_points;
+    const double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all, fragments);
     if (!(ss > 0) || !(first > 0)) {
         return done();
     }

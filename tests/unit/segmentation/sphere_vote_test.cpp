@@ -191,6 +191,49 @@ TEST(SphereVote, FruitOfTwoSpacingsARadiusAreFoundWithTheirRadius) {
     }
 }
 
+TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {
+    // As DBSCAN leaves an SfM fruit whose far side is sparse: the upper half of each fruit in
+    // one piece, the lower half in pieces of about 12 points (cells of 4 spacings), points
+    // jittered by 3 % of the radius. Most pieces are small, so the median over pieces of their
+    // size misleads (normals fitted at that size go astray in the noise); the median over points
+    // is the size of the halves, and the pieces join around their centres.
+    Scene s = hollow(10);
+    Rng rng(3);
+    std::map<std::tuple<int, int, int>, std::uint32_t> piece;
+    std::vector<double> centre_z;
+    for (const auto& [balls, cluster] : layout(10)) {
+        for (const Ball& b : balls) {
+            centre_z.push_back(b.centre.z());
+        }
+    }
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        auto& p = s.cloud[i];
+        const bool lower = p.z < centre_z[s.truth[i] - 1];
+        p.x += static_cast<float>(0.3 * rng.normal());
+        p.y += static_cast<float>(0.3 * rng.normal());
+        p.z += static_cast<float>(0.3 * rng.normal());
+        if (lower) {
+            const auto key = std::make_tuple(static_cast<int>(std::floor(p.x / 4)),
+                                             static_cast<int>(std::floor(p.y / 4)),
+                                             static_cast<int>(std::floor(p.z / 4)));
+            s.label[i] =
+                100 + piece.emplace(key, static_cast<std::uint32_t>(piece.size())).first->second;
+        }
+    }
+    ASSERT_GT(piece.size(), 50u);
+    for (const double fragment_points : {40.0, 1.0}) {  // 1: the median over pieces
+        const SphereVoteResult r =
+            sphere_vote(XyzView(s.cloud), s.label, {.fragment_points = fragment_points});
+        if (fragment_points > 1) {
+            EXPECT_NEAR(r.fruit_radius, 10, 1);
+            EXPECT_EQ(r.peaks, 7u);
+            EXPECT_EQ(r.cluster_count, 7u);
+        } else {
+            EXPECT_LT(r.fruit_radius, 7) << "the median over pieces did not mislead";
+        }
+    }
+}
+
 TEST(SphereVote, AGivenRadiusIsUsedAsIs) {
     const Scene s = hollow(10);
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 10});

@@ -24,6 +24,9 @@ struct SphereVoteParams {
     /// this (1: all parallel, a flat patch such as a piece of leaf)
     double max_alignment = 0.93;
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
+    /// DBSCAN left fragments when its median cluster has fewer points: the first rough fruit
+    /// size is then taken over points, not clusters (pc_fruitcount warns below the same size)
+    double fragment_points = 40;
     std::uint32_t max_samples = 100000;  ///< points that fit normals and vote (a strided sample)
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
