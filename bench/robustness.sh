@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The condition matrix of docs/robustness.md: 440 scenes (bench/robustness/scenes.txt) counted by
+# The condition matrix of docs/robustness.md: 540 scenes (bench/robustness/scenes.txt) counted by
 # each method, scored against their truth. One command:
 #     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
@@ -36,9 +36,10 @@ echo "id,split,family,mode,r_over_s,noise,colour,units,method,present,count,f1,c
 # the colour words pc_fruitcount knows (scenes of other colours have no `word` row)
 words=$($b/pc_fruitcount --help | tr -s ' \n' ' ' | grep -o -- '--fruit-color arg[^:]*: [a-z, ]*' || true)
 
+newest=$(cut -d'|' -f2 bench/robustness/scenes.txt | grep '^held-out-' | sort -V | tail -n 1)
 while IFS='|' read -r id part family mode rs noise colour units args; do
   case $split in  # "all" is every part scored so far: the newest held-out part only by name
-    all) [ "$part" = held-out-3 ] && continue ;;
+    all) [ "$part" = "$newest" ] && continue ;;
     *) [ "$part" = "$split" ] || continue ;;
   esac
   stem=$dir/scenes/$id

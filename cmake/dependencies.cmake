@@ -21,3 +21,6 @@ if(PC_BUILD_TESTS)
     add_library(pc_pcl_io INTERFACE)
     target_link_libraries(pc_pcl_io INTERFACE ${PC_PCL_IO_LIBRARY} pc_pcl_common)
 endif()
+
+# Images (masks, renders). calib3d only for the tests' projection oracle (cv::projectPoints).
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs calib3d)

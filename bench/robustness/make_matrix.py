@@ -6,7 +6,7 @@ Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
 split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
-'held-out-3' (341-440) after 'held-out-2' had been."""
+'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) after that."""
 import random
 import os
 
@@ -75,7 +75,8 @@ lines += draw(random.Random(2027), FAMILIES2, COLOURS2, range(241, 341),
 
 # A third held-out part, drawn once the second had been scored (session 19) and then used to
 # choose one change (so it is a tune part now): new seeds, a family and a colour no method has
-# seen (citrus-like: 45 mm, single or in touching pairs; dark red fruit, value 0.39).
+# seen (citrus-like: 45 mm, single or in touching pairs; dark red fruit, value 0.39). Scored once,
+# then one of its failures looked at (so it is seen now too).
 FAMILIES3 = dict(FAMILIES2)
 FAMILIES3['citrus'] = (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 2 '
                               '--touch-gap 0.003 --fruit-count 50 --canopy 0.9,0.9,0.7')
@@ -84,9 +85,20 @@ COLOURS3['dark-red'] = (100, 20, 25)
 lines += draw(random.Random(2028), FAMILIES3, COLOURS3, range(341, 441),
               lambda family, colour, mode: 'held-out-3')
 
+# A fourth, drawn when the third had been scored and then looked at (session 19): never scored.
+# New seeds; crab-apple-like fruit (15 mm, bunches of 2-5 touching) and pink fruit.
+FAMILIES4 = dict(FAMILIES3)
+FAMILIES4['crab'] = (0.015, '--species plum --fruit-radius 0.015 --bunch-min 2 --bunch-max 5 '
+                            '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')
+COLOURS4 = dict(COLOURS3)
+COLOURS4['pink'] = (235, 130, 160)
+lines += draw(random.Random(2029), FAMILIES4, COLOURS4, range(441, 541),
+              lambda family, colour, mode: 'held-out-4')
+
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
 with open(out, 'w') as f:
     f.write('\n'.join(lines) + '\n')
 print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune, '
       f'{sum("|held-out-2|" in l for l in lines)} in the second held-out part, '
-      f'{sum("|held-out-3|" in l for l in lines)} in the third')
+      f'{sum("|held-out-3|" in l for l in lines)} in the third, '
+      f'{sum("|held-out-4|" in l for l in lines)} in the fourth')
