@@ -29,7 +29,7 @@ std::string valid_cloud() {
 
 /// What a tool needs on its command line besides the cloud it reads: pc_compare also takes the
 /// reference cloud B (its A is stdin or -i); pc_eval scores `label` against itself; pc_synth makes
-/// a tiny scene.
+/// a tiny scene; pc_lift takes the shipped view sample's cameras and masks.
 std::string extra_args(const std::string& tool) {
     if (tool == "pc_compare") {
         return " " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply";
@@ -39,6 +39,9 @@ std::string extra_args(const std::string& tool) {
     }
     if (tool == "pc_synth") {
         return " --fruit-count 3 --canopy 0.2,0.2,0.2";
+    }
+    if (tool == "pc_lift") {
+        return " --cameras " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/views/transforms.json";
     }
     return "";
 }

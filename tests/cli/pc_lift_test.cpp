@@ -1,0 +1,116 @@
+// pc_lift on the shipped view sample (sample_clouds/make_views.py: three spheres over the ground,
+// eight cameras, masks ray-cast against the analytic spheres): every ground point stays
+// non-fruit, fruit points seen by the cameras are fruit but for a few rim points seen once; the
+// COLMAP model of the same cameras gives the same bytes; bad camera and mask files fail cleanly.
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include <pc/io/blob.h>
+#include <pc/io/read.h>
+
+#include "support/run_tool.h"
+
+namespace pc::test {
+namespace {
+
+const std::string kViews = std::string(PC_SAMPLE_CLOUDS_DIR) + "/views";
+
+std::uint32_t field(const io::Blob& b, const char* name, std::size_t i) {
+    const pcl::PCLPointField* f = io::find_field(b, name);
+    EXPECT_NE(f, nullptr) << name;
+    std::uint32_t v = 0;
+    if (f != nullptr) {
+        std::memcpy(&v, b.cloud.data.data() + i * b.cloud.point_step + f->offset, 4);
+    }
+    return v;
+}
+
+TEST(PcLift, MasksLiftedOntoTheSampleMarkTheFruitAndNotTheGround) {
+    TempDir dir;
+    const RunResult r = run_shell("cd " + kViews + " && @pc_lift -i cloud.pcd --cameras " +
+                                  "transforms.json -o " + dir.file("a.pcd"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(r.err.empty()) << r.err;
+    const io::Blob b = io::read_cloud(dir.file("a.pcd")).blob;
+    std::size_t fruit_seen = 0, fruit_missed = 0, ground_seen = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+        const std::uint32_t views = field(b, "views", i), votes = field(b, "votes", i);
+        const bool fruit = field(b, "fruit", i) != 0, truth = field(b, "gt", i) != 0;
+        ASSERT_LE(votes, views);
+        EXPECT_EQ(fruit, views > 0 && 2 * votes >= views);  // --min-ratio 0.5
+        if (views == 0) {
+            continue;
+        }
+        if (truth) {
+            ++fruit_seen;
+            fruit_missed += !fruit;
+        } else {
+            ++ground_seen;
+            EXPECT_FALSE(fruit) << i;
+        }
+    }
+    EXPECT_GT(fruit_seen, 2500u);
+    EXPECT_GT(ground_seen, 3000u);
+    EXPECT_LT(fruit_missed, fruit_seen / 100);  // rim points seen by one view: 19 of 2600 here
+
+    // The same cameras as a COLMAP model (world-to-camera quaternions, 12 decimals), masks found
+    // by image name: the same bytes.
+    const RunResult c = run_shell("@pc_lift -i " + kViews + "/cloud.pcd --cameras " + kViews +
+                                  "/colmap --masks " + kViews + "/masks -o " + dir.file("c.pcd"));
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_TRUE(slurp(dir.file("a.pcd")) == slurp(dir.file("c.pcd")));
+}
+
+TEST(PcLift, BadCameraAndMaskFilesFailWithOneLineAndNoOutput) {
+    TempDir dir;
+    const std::string out = dir.file("out.pcd");
+    const std::string in = " -i " + kViews + "/cloud.pcd -o " + out;
+    std::ofstream(dir.file("bad.json")) << R"({"frames": [{"transform_matrix": [[1,0,0]]}]})";
+    std::ofstream(dir.file("tiny.png")) << "not a png";
+    const struct {
+        std::string args;
+        int code;
+        std::string says;
+    } cases[] = {
+        {"", 2, "--cameras is required"},
+        {" --cameras " + dir.file("missing.json"), 1, "missing.json: cannot open"},
+        {" --cameras " + dir.file("bad.json"), 1, "bad.json: frame 0"},
+        {" --cameras " + kViews + "/colmap", 1, "give --masks DIR"},
+        {" --cameras " + kViews + "/transforms.json --masks " + dir.path, 1,
+         "no mask frame_00.png or .jpg"},
+        {" --cameras " + kViews + "/transforms.json --min-ratio 2", 2, "min_ratio"},
+        {" --cameras " + kViews + "/transforms.json --colmap-frame", 2, "has no applied_transform"},
+    };
+    for (const auto& k : cases) {
+        const RunResult r = run_shell("@pc_lift" + in + k.args);
+        EXPECT_EQ(r.code, k.code) << k.args << ": " << r.err;
+        EXPECT_NE(r.err.find(k.says), std::string::npos) << k.args << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(std::ifstream(out).good()) << k.args;
+    }
+    // masks of another size than the camera, and a mask that is not an image
+    const RunResult small = run_shell(
+        "mkdir -p " + dir.file("m") + " && cp " + kViews + "/masks/*.png " + dir.file("m") +
+        " && cp " + dir.file("tiny.png") + " " + dir.file("m/frame_03.png") + " && @pc_lift" + in +
+        " --cameras " + kViews + "/transforms.json --masks " + dir.file("m"));
+    EXPECT_EQ(small.code, 1);
+    EXPECT_NE(small.err.find("frame_03.png: not an image"), std::string::npos) << small.err;
+    EXPECT_FALSE(std::ifstream(out).good());
+}
+
+TEST(PcLift, CamerasThatSeeNoPointAreAWarning) {
+    // The sample's cloud moved 100 m away: no camera sees it.
+    const RunResult r = run_shell("@pc_transform -i " + kViews +
+                                  "/cloud.pcd --translate 100,0,0 | @pc_lift --cameras " + kViews +
+                                  "/transforms.json > /dev/null");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: no camera sees any point"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace pc::test

@@ -1,0 +1,196 @@
+// pc_lift: 2D fruit masks of calibrated views lifted onto the cloud's points by majority vote
+// (paper 2.3.1).
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <string>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <pc/cameras/lift.h>
+#include <pc/cameras/read_cameras.h>
+#include <pc/cli/tool.h>
+#include <pc/core/error.h>
+#include <pc/io/blob.h>
+#include <pc/io/points.h>
+#include <pc/search/spacing.h>
+
+namespace cam = pc::cameras;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+}
+
+/// A binary mask from an image file, FruitNeRF's rules: JPEG fruit where the value is > 125
+/// (compression blurs 0/255), PNG fruit where it is not 0 (0/1, 0/255, or 8- or 16-bit instance
+/// ids). Several channels: their largest value.
+cam::Mask read_mask(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        throw pc::IoError(path + ": no such mask file");
+    }
+    const cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (m.empty()) {
+        throw pc::IoError(path + ": not an image OpenCV can read");
+    }
+    if (m.depth() != CV_8U && m.depth() != CV_16U) {
+        throw pc::IoError(path + ": masks must be 8- or 16-bit images");
+    }
+    const std::string ext = lower(fs::path(path).extension().string());
+    const double above = ext == ".jpg" || ext == ".jpeg" ? 125 : 0;
+    cam::Mask out{m.cols, m.rows, {}};
+    out.fruit.resize(static_cast<std::size_t>(m.cols) * static_cast<std::size_t>(m.rows));
+    const int channels = m.channels();
+    for (int y = 0; y < m.rows; ++y) {
+        for (int x = 0; x < m.cols; ++x) {
+            double v = 0;
+            for (int c = 0; c < channels; ++c) {
+                const double value = m.depth() == CV_8U ? m.ptr<std::uint8_t>(y)[x * channels + c]
+                                                        : m.ptr<std::uint16_t>(y)[x * channels + c];
+                v = std::max(v, value);
+            }
+            out.fruit[static_cast<std::size_t>(y) * static_cast<std::size_t>(m.cols) +
+                      static_cast<std::size_t>(x)] = v > above ? 1 : 0;
+        }
+    }
+    return out;
+}
+
+/// The mask file of a view: DIR/<stem of its image>.png|.jpg|.jpeg with --masks DIR, else the
+/// source's mask_path / semantic_path, relative to the camera file's directory.
+std::string mask_path(const cam::View& v, const std::string& masks_dir, const fs::path& base) {
+    if (!masks_dir.empty()) {
+        const std::string stem = fs::path(v.image).stem().string();
+        for (const char* ext : {".png", ".jpg", ".jpeg", ".PNG", ".JPG"}) {
+            const fs::path p = fs::path(masks_dir) / (stem + ext);
+            std::error_code ec;
+            if (fs::exists(p, ec)) {
+                return p.string();
+            }
+        }
+        throw pc::IoError(masks_dir + ": no mask " + stem + ".png or .jpg for image " + v.image);
+    }
+    if (v.mask.empty()) {
+        throw pc::IoError(v.image +
+                          ": the camera file names no mask for this view; give --masks DIR");
+    }
+    const fs::path m(v.mask);
+    return m.is_absolute() ? m.string() : (base / m).lexically_normal().string();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    std::string cameras_path, masks_dir, dataparser;
+    bool colmap_frame = false;
+    double spacing = 0;
+    cam::LiftParams p;
+    pc::cli::Tool tool("pc_lift",
+                       "lift 2D fruit masks of calibrated views onto the points: add fields views "
+                       "(views that see the point), votes (of those, views whose mask covers it) "
+                       "and fruit (1 iff votes/views >= --min-ratio and views >= --min-views)");
+    tool.option("cameras", &cameras_path,
+                "camera file: nerfstudio / instant-ngp transforms.json, or a COLMAP sparse model "
+                "directory (cameras and images, .txt or .bin)");
+    tool.option("masks", &masks_dir,
+                "mask directory: DIR/<stem of the image name>.png|.jpg; default: each frame's "
+                "mask_path or semantic_path");
+    tool.option("min-ratio", &p.min_ratio, "fruit iff votes / views >= this");
+    tool.option("min-views", &p.min_views, "... and at least this many views see the point");
+    tool.option("spacing", &spacing,
+                "point spacing in cloud units (splat size, depth tolerance); 0: the median "
+                "nearest-neighbour distance");
+    tool.option("footprint", &p.visibility.footprint,
+                "x spacing: the radius of surface a point covers in the z-buffer");
+    tool.option("depth-tolerance", &p.visibility.depth_tolerance,
+                "x spacing: a point is seen when at most this behind the nearest surface");
+    tool.flag("colmap-frame", &colmap_frame,
+              "the cloud is in COLMAP's world frame while the cameras come from a transforms.json "
+              "with applied_transform (ns-process-data): undo it for the cameras");
+    tool.option("dataparser", &dataparser,
+                "nerfstudio's dataparser_transforms.json: the cloud is in the frame nerfstudio "
+                "trains and exports in (ns-export); the cameras are moved into it");
+    tool.epilog(
+        "\nMasks: JPEG fruit where > 125, PNG where not 0 (binary or instance ids).\n"
+        "See docs/tools/pc_lift.md.\n");
+    return tool.run(argc, argv, [&](pc::cli::Streams& io) {
+        if (cameras_path.empty()) {
+            throw pc::InvalidArgument(
+                "--cameras is required (a transforms.json or a COLMAP model)");
+        }
+        p.validate();
+        if (spacing < 0) {
+            throw pc::InvalidArgument("--spacing must be >= 0 (0: measured), got " +
+                                      pc::format_number(spacing));
+        }
+        cam::Dataset ds = cam::read_cameras(cameras_path);
+        if (colmap_frame) {
+            if (!ds.applied) {
+                throw pc::InvalidArgument(cameras_path +
+                                          " has no applied_transform: "
+                                          "--colmap-frame needs one");
+            }
+            for (cam::View& v : ds.views) {
+                v = cam::moved(v, ds.applied->inverse());
+            }
+        }
+        if (!dataparser.empty()) {
+            const cam::Similarity s = cam::read_dataparser_transforms(dataparser);
+            for (cam::View& v : ds.views) {
+                v = cam::moved(v, s);
+            }
+        }
+        std::error_code ec;
+        const fs::path base = fs::is_directory(cameras_path, ec)
+                                  ? fs::path(cameras_path)
+                                  : fs::path(cameras_path).parent_path();
+        std::vector<std::string> masks;
+        for (const cam::View& v : ds.views) {
+            masks.push_back(mask_path(v, masks_dir, base));
+        }
+        pc::io::Blob blob = io.read();
+        const pc::io::XyzPoints points(blob);
+        if (spacing == 0) {
+            spacing = pc::search::median_spacing(points.view());
+            if (!(spacing > 0)) {
+                throw pc::IoError(
+                    "cannot measure the point spacing (fewer than two distinct "
+                    "points): give --spacing");
+            }
+        }
+        io.note("spacing " + pc::format_number(spacing) + ", " + std::to_string(ds.views.size()) +
+                " views");
+        std::size_t step = std::max<std::size_t>(1, ds.views.size() / 10);
+        const cam::LiftResult r = cam::lift(
+            points.view(), ds.views, [&](std::size_t k) { return read_mask(masks[k]); }, spacing, p,
+            [&](std::size_t done, std::size_t total) {
+                if (done % step == 0 || done == total) {
+                    io.note("view " + std::to_string(done) + " of " + std::to_string(total));
+                }
+            });
+        std::size_t seen = 0, fruit = 0;
+        for (std::size_t i = 0; i < r.views.size(); ++i) {
+            seen += r.views[i] > 0;
+            fruit += r.fruit[i];
+        }
+        io.note(std::to_string(seen) + " of " + std::to_string(r.views.size()) + " points seen, " +
+                std::to_string(fruit) + " fruit");
+        if (blob.size() > 0 && seen == 0) {
+            io.warn(
+                "no camera sees any point: are the cloud and the cameras in the same frame "
+                "(--colmap-frame, --dataparser) and units?");
+        } else if (seen > 0 && fruit == 0) {
+            io.warn(
+                "no point is fruit: do the masks mark fruit as non-zero (PNG) or > 125 (JPEG)?");
+        }
+        std::vector<std::uint32_t> flag(r.fruit.begin(), r.fruit.end());
+        pc::io::set_field(blob, "views", r.views);
+        pc::io::set_field(blob, "votes", r.votes);
+        pc::io::set_field(blob, "fruit", flag);
+        io.write(blob);
+    });
+}
