@@ -1,10 +1,12 @@
 // libFuzzer target: the JSON readers (nerfstudio's dataparser_transforms.json, pc_synth's
-// ground truth). Any input must parse or throw pc::Error; anything else is a finding.
+// ground truth, the cameras' transforms.json and dataparser_transforms.json). Any input must parse
+// or throw pc::Error; anything else is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
+#include <pc/cameras/read_cameras.h>
 #include <pc/core/error.h>
 #include <pc/evaluation/truth.h>
 #include <pc/features/transform.h>
@@ -17,6 +19,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     try {
         (void)pc::evaluation::parse_truth(text);
+    } catch (const pc::Error&) {
+    }
+    try {
+        (void)pc::cameras::parse_transforms(text, "fuzz");
+    } catch (const pc::Error&) {
+    }
+    try {
+        (void)pc::cameras::parse_dataparser_transforms(text, "fuzz");
     } catch (const pc::Error&) {
     }
     return 0;

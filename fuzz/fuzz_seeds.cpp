@@ -29,7 +29,11 @@ int main(int argc, char** argv) {
     for (const auto& f : pc::test::edge_corpus()) {
         write(out / "cloud" / ("edge_" + std::to_string(n)), f.bytes);
     }
-    for (const auto& entry : fs::directory_iterator(PC_SAMPLE_CLOUDS_DIR)) {
+    // every sample file, sub-folders (views/) included
+    for (const auto& entry : fs::recursive_directory_iterator(PC_SAMPLE_CLOUDS_DIR)) {
+        if (!entry.is_regular_file()) {
+            continue;
+        }
         const auto ext = entry.path().extension();
         const bool small = entry.file_size() <= 256 * 1024;
         if (small && (ext == ".pcd" || ext == ".ply" || ext == ".json")) {

@@ -2,9 +2,11 @@
 // (paper 2.3.1).
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <filesystem>
 #include <string>
 
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <pc/cameras/lift.h>
@@ -27,7 +29,7 @@ std::string lower(std::string s) {
 
 /// A binary mask from an image file, FruitNeRF's rules: JPEG fruit where the value is > 125
 /// (compression blurs 0/255), PNG fruit where it is not 0 (0/1, 0/255, or 8- or 16-bit instance
-/// ids). Several channels: their largest value.
+/// ids). Several channels: their largest value. The mask holds 255 where fruit, else 0.
 cam::Mask read_mask(const std::string& path) {
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
@@ -42,20 +44,23 @@ cam::Mask read_mask(const std::string& path) {
     }
     const std::string ext = lower(fs::path(path).extension().string());
     const double above = ext == ".jpg" || ext == ".jpeg" ? 125 : 0;
+    cv::Mat grey = m;
+    if (m.channels() > 1) {
+        std::vector<cv::Mat> planes;
+        cv::split(m, planes);
+        grey = planes[0];
+        for (std::size_t c = 1; c < planes.size(); ++c) {
+            cv::max(grey, planes[c], grey);
+        }
+    }
+    cv::Mat fruit;
+    cv::compare(grey, above, fruit, cv::CMP_GT);  // 255 where fruit, 8-bit
     cam::Mask out{m.cols, m.rows, {}};
     out.fruit.resize(static_cast<std::size_t>(m.cols) * static_cast<std::size_t>(m.rows));
-    const int channels = m.channels();
     for (int y = 0; y < m.rows; ++y) {
-        for (int x = 0; x < m.cols; ++x) {
-            double v = 0;
-            for (int c = 0; c < channels; ++c) {
-                const double value = m.depth() == CV_8U ? m.ptr<std::uint8_t>(y)[x * channels + c]
-                                                        : m.ptr<std::uint16_t>(y)[x * channels + c];
-                v = std::max(v, value);
-            }
-            out.fruit[static_cast<std::size_t>(y) * static_cast<std::size_t>(m.cols) +
-                      static_cast<std::size_t>(x)] = v > above ? 1 : 0;
-        }
+        std::memcpy(
+            out.fruit.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(m.cols),
+            fruit.ptr<std::uint8_t>(y), static_cast<std::size_t>(m.cols));
     }
     return out;
 }

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -36,11 +37,11 @@ std::string slurp(const std::string& path) {
     return s.str();
 }
 
-json parse_json(const std::string& path) {
+json parse_json(std::string_view text, const std::string& name) {
     try {
-        return json::parse(slurp(path));
+        return json::parse(text);
     } catch (const json::exception& e) {
-        throw IoError(path + ": not JSON (" + e.what() + ")");
+        throw IoError(name + ": not JSON (" + e.what() + ")");
     }
 }
 
@@ -156,8 +157,10 @@ std::string string_key(const json& frame, const char* key, const std::string& wh
     return frame.at(key).get<std::string>();
 }
 
-Dataset read_transforms(const std::string& path) {
-    const json j = parse_json(path);
+}  // namespace
+
+Dataset parse_transforms(std::string_view text, const std::string& path) {
+    const json j = parse_json(text, path);
     if (!j.is_object() || !j.contains("frames") || !j.at("frames").is_array()) {
         throw IoError(path + ": no \"frames\" array (not a transforms.json)");
     }
@@ -201,6 +204,8 @@ Dataset read_transforms(const std::string& path) {
     }
     return d;
 }
+
+namespace {
 
 // ---- COLMAP ----
 
@@ -518,11 +523,15 @@ Dataset read_cameras(const std::string& path) {
         }
         return d;
     }
-    return read_transforms(path);
+    return parse_transforms(slurp(path), path);
 }
 
 Similarity read_dataparser_transforms(const std::string& path) {
-    const json j = parse_json(path);
+    return parse_dataparser_transforms(slurp(path), path);
+}
+
+Similarity parse_dataparser_transforms(std::string_view text, const std::string& path) {
+    const json j = parse_json(text, path);
     if (!j.is_object() || !j.contains("transform") || !j.contains("scale")) {
         throw IoError(path + ": no \"transform\" and \"scale\" (not a dataparser_transforms.json)");
     }

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <pc/cameras/camera.h>
@@ -29,9 +30,17 @@ struct Dataset {
 /// unknown camera model, a view without its camera, non-finite numbers, a truncated binary.
 [[nodiscard]] Dataset read_cameras(const std::string& path);
 
+/// A transforms.json's text, as read_cameras() reads the file; `path` names it in errors (the
+/// fuzz target's entry point).
+[[nodiscard]] Dataset parse_transforms(std::string_view text, const std::string& path);
+
 /// nerfstudio's `dataparser_transforms.json` ({"transform": 3x4, "scale": s}): the similarity
 /// from the transforms.json frame into the frame nerfstudio trains and exports in (ns-export's
 /// clouds), p' = s·(T·[p; 1]). Throws pc::IoError as read_cameras() does.
 [[nodiscard]] Similarity read_dataparser_transforms(const std::string& path);
+
+/// A dataparser_transforms.json's text, as read_dataparser_transforms() reads the file.
+[[nodiscard]] Similarity parse_dataparser_transforms(std::string_view text,
+                                                     const std::string& path);
 
 }  // namespace pc::cameras
