@@ -1,13 +1,8 @@
 // pc_lift: 2D fruit masks of calibrated views lifted onto the cloud's points by majority vote
 // (paper 2.3.1).
 #include <algorithm>
-#include <cctype>
-#include <cstring>
 #include <filesystem>
 #include <string>
-
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include <pc/cameras/lift.h>
 #include <pc/cameras/read_cameras.h>
@@ -17,52 +12,16 @@
 #include <pc/io/points.h>
 #include <pc/search/spacing.h>
 
+#include "images.h"
+
 namespace cam = pc::cameras;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
-    return s;
-}
-
-/// A binary mask from an image file, FruitNeRF's rules: JPEG fruit where the value is > 125
-/// (compression blurs 0/255), PNG fruit where it is not 0 (0/1, 0/255, or 8- or 16-bit instance
-/// ids). Several channels: their largest value. The mask holds 255 where fruit, else 0.
 cam::Mask read_mask(const std::string& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        throw pc::IoError(path + ": no such mask file");
-    }
-    const cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
-    if (m.empty()) {
-        throw pc::IoError(path + ": not an image OpenCV can read");
-    }
-    if (m.depth() != CV_8U && m.depth() != CV_16U) {
-        throw pc::IoError(path + ": masks must be 8- or 16-bit images");
-    }
-    const std::string ext = lower(fs::path(path).extension().string());
-    const double above = ext == ".jpg" || ext == ".jpeg" ? 125 : 0;
-    cv::Mat grey = m;
-    if (m.channels() > 1) {
-        std::vector<cv::Mat> planes;
-        cv::split(m, planes);
-        grey = planes[0];
-        for (std::size_t c = 1; c < planes.size(); ++c) {
-            cv::max(grey, planes[c], grey);
-        }
-    }
-    cv::Mat fruit;
-    cv::compare(grey, above, fruit, cv::CMP_GT);  // 255 where fruit, 8-bit
-    cam::Mask out{m.cols, m.rows, {}};
-    out.fruit.resize(static_cast<std::size_t>(m.cols) * static_cast<std::size_t>(m.rows));
-    for (int y = 0; y < m.rows; ++y) {
-        std::memcpy(
-            out.fruit.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(m.cols),
-            fruit.ptr<std::uint8_t>(y), static_cast<std::size_t>(m.cols));
-    }
-    return out;
+    const cv::Mat m = pc::tools::read_image(path);
+    return {m.cols, m.rows, pc::tools::binary_mask(m, path)};
 }
 
 /// The mask file of a view: DIR/<stem of its image>.png|.jpg|.jpeg with --masks DIR, else the

@@ -29,7 +29,8 @@ std::string valid_cloud() {
 
 /// What a tool needs on its command line besides the cloud it reads: pc_compare also takes the
 /// reference cloud B (its A is stdin or -i); pc_eval scores `label` against itself; pc_synth makes
-/// a tiny scene; pc_lift takes the shipped view sample's cameras and masks.
+/// a tiny scene; pc_lift takes the shipped view sample's cameras and masks, pc_maskeval its masks
+/// twice.
 std::string extra_args(const std::string& tool) {
     if (tool == "pc_compare") {
         return " " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply";
@@ -40,14 +41,18 @@ std::string extra_args(const std::string& tool) {
     if (tool == "pc_synth") {
         return " --fruit-count 3 --canopy 0.2,0.2,0.2";
     }
+    if (tool == "pc_maskeval") {
+        const std::string masks = std::string(PC_SAMPLE_CLOUDS_DIR) + "/views/masks";
+        return " " + masks + " " + masks;
+    }
     if (tool == "pc_lift") {
         return " --cameras " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/views/transforms.json";
     }
     return "";
 }
 
-/// Tools that make their cloud instead of reading one: no -i, no input to get wrong.
-bool generator(const std::string& tool) { return tool == "pc_synth"; }
+/// Tools that read no cloud: they make one (pc_synth) or read folders of images (pc_maskeval).
+bool generator(const std::string& tool) { return tool == "pc_synth" || tool == "pc_maskeval"; }
 
 /// Tools whose job is the format itself: every edge-case file must pass through them.
 bool format_tool(const std::string& tool) { return tool == "pc_info" || tool == "pc_convert"; }
@@ -89,7 +94,9 @@ TEST_P(Contract, UnknownOptionIsAUsageErrorOnOneLine) {
 }
 
 TEST_P(Contract, UnparsableValueIsAUsageError) {
-    const std::string option = generator(GetParam()) ? " --seed lots" : " --max-input-bytes lots";
+    const std::string option = GetParam() == "pc_synth"      ? " --seed lots"
+                               : GetParam() == "pc_maskeval" ? " --kind lots"
+                                                             : " --max-input-bytes lots";
     const RunResult r =
         run_shell("@" + GetParam() + option + extra_args(GetParam()), valid_cloud());
     EXPECT_EQ(r.code, 2);

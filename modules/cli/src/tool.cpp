@@ -556,7 +556,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
         po::notify(vm);
         im.apply_bindings(vm);
         im.check_output(io);
-        if (im.inputs != nullptr &&
+        if (im.inputs != nullptr && im.reads &&
             (!vm["input"].defaulted() || im.inputs->size() < im.min_inputs)) {
             im.inputs->insert(im.inputs->begin(), io.input_);  // -i, or stdin by default
         }

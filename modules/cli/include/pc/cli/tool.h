@@ -104,6 +104,7 @@ public:
                 const std::string& help,
                 std::size_t min_count = 1);
     /// The tool makes its cloud instead of reading one (pc_synth): no -i, no --max-input-bytes.
+    /// With inputs(), the positional paths are not clouds (pc_maskeval's folders): no stdin.
     void no_input();
     /// Extra text printed at the end of --help.
     void epilog(const std::string& text);

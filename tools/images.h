@@ -1,0 +1,67 @@
+// Image files for the view tools (pc_lift, pc_maskeval): read with OpenCV, one clear error line.
+#pragma once
+
+#include <algorithm>
+#include <cctype>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <pc/core/error.h>
+
+namespace pc::tools {
+
+/// An 8- or 16-bit image as stored (channels in OpenCV's BGR order); pc::IoError naming the file
+/// when it is missing, unreadable or of another sample type.
+inline cv::Mat read_image(const std::string& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw IoError(path + ": no such image file");
+    }
+    const cv::Mat m = cv::imread(path, cv::IMREAD_UNCHANGED);
+    if (m.empty()) {
+        throw IoError(path + ": not an image OpenCV can read");
+    }
+    if (m.depth() != CV_8U && m.depth() != CV_16U) {
+        throw IoError(path + ": only 8- and 16-bit images are supported");
+    }
+    return m;
+}
+
+inline bool is_jpeg(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext == ".jpg" || ext == ".jpeg";
+}
+
+/// FruitNeRF's rule for binary masks: a JPEG is fruit where its value is > 125 (compression blurs
+/// 0/255), any other image where it is not 0 (0/1, 0/255, or 8- or 16-bit instance ids); several
+/// channels: their largest value. 255 where fruit, else 0; row-major.
+inline std::vector<std::uint8_t> binary_mask(const cv::Mat& m, const std::string& path) {
+    cv::Mat grey = m;
+    if (m.channels() > 1) {
+        std::vector<cv::Mat> planes;
+        cv::split(m, planes);
+        grey = planes[0];
+        for (std::size_t c = 1; c < planes.size(); ++c) {
+            cv::max(grey, planes[c], grey);
+        }
+    }
+    cv::Mat fruit;
+    cv::compare(grey, is_jpeg(path) ? 125 : 0, fruit, cv::CMP_GT);
+    std::vector<std::uint8_t> out(static_cast<std::size_t>(m.cols) *
+                                  static_cast<std::size_t>(m.rows));
+    for (int y = 0; y < m.rows; ++y) {
+        std::memcpy(out.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(m.cols),
+                    fruit.ptr<std::uint8_t>(y), static_cast<std::size_t>(m.cols));
+    }
+    return out;
+}
+
+}  // namespace pc::tools
