@@ -4,10 +4,10 @@
 #include <numeric>
 #include <string>
 
-#include <Eigen/Core>
-
 #include <pc/cameras/lift.h>
 #include <pc/core/error.h>
+
+#include "morton.h"
 
 namespace pc::cameras {
 
@@ -31,40 +31,7 @@ LiftResult lift(const XyzView& points,
     // Points in Morton order of their position: neighbours in space land on neighbouring pixels,
     // so the z-buffer's reads and writes stay in cache (in the cloud's own order, often shuffled,
     // 80 % of the time went to cache misses on the depth buffer).
-    std::vector<std::uint32_t> order(points.size);
-    std::iota(order.begin(), order.end(), 0u);
-    {
-        Eigen::Vector3f lo = Eigen::Vector3f::Constant(std::numeric_limits<float>::max());
-        Eigen::Vector3f hi = -lo;
-        for (std::size_t i = 0; i < points.size; ++i) {
-            const pcl::PointXYZ p = points[i];
-            const Eigen::Vector3f q(p.x, p.y, p.z);
-            if (q.allFinite()) {
-                lo = lo.cwiseMin(q);
-                hi = hi.cwiseMax(q);
-            }
-        }
-        const Eigen::Vector3f scale =
-            (1023.0f / (hi - lo).cwiseMax(Eigen::Vector3f::Constant(1e-30f)).array()).matrix();
-        std::vector<std::uint32_t> key(points.size, 0);
-        for (std::size_t i = 0; i < points.size; ++i) {
-            const pcl::PointXYZ p = points[i];
-            const Eigen::Vector3f q(p.x, p.y, p.z);
-            if (!q.allFinite()) {
-                continue;
-            }
-            std::uint32_t k = 0;
-            const Eigen::Vector3f c = (q - lo).cwiseProduct(scale);
-            const auto x = static_cast<std::uint32_t>(c.x()), y = static_cast<std::uint32_t>(c.y()),
-                       z = static_cast<std::uint32_t>(c.z());
-            for (int b = 9; b >= 0; --b) {
-                k = (k << 3) | (((x >> b) & 1u) << 2) | (((y >> b) & 1u) << 1) | ((z >> b) & 1u);
-            }
-            key[i] = k;
-        }
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::uint32_t a, std::uint32_t b) { return key[a] < key[b]; });
-    }
+    const std::vector<std::uint32_t> order = detail::morton_order(points);
     Cloud copy;  // contiguous in that order: read once per view without indirection
     copy.resize(points.size);
     for (std::size_t i = 0; i < points.size; ++i) {
