@@ -24,6 +24,9 @@ struct SphereVoteParams {
     /// this (1: all parallel, a flat patch such as a piece of leaf)
     double max_alignment = 0.93;
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
+    /// Solids: vote again with the size the assigned points give (their median distance from
+    /// their centre, as in a filled ball) when it exceeds R by this factor
+    double solid_refit = 1.15;
     /// DBSCAN left fragments when its median cluster has fewer points: the first rough fruit
     /// size is then taken over points, not clusters (pc_fruitcount warns below the same size)
     double fragment_points = 40;
