@@ -773,7 +773,9 @@ SphereVoteResult sphere_vote(const XyzView& points,
     if (peaks.empty()) {
         return done();
     }
-    const std::vector<std::uint32_t> clusters = labels;
+    // a solid's refit below starts again from the clusters
+    const std::vector<std::uint32_t> clusters =
+        r.solid && r.estimated ? labels : std::vector<std::uint32_t>{};
     assign(points, members, labels, peaks, params.reach, R);
     // Solid fruit: R from the outer layer's normals reads short (about 0.65-0.8 of the fruit's in
     // random volumes, and a fruit of 3 spacings then splits in two). The points given to each
@@ -781,8 +783,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // Used when the distances spread as a ball's do (a shell's quartiles lie close together) and
     // it says R is larger by more than solid_refit: vote again with it.
     if (r.solid && r.estimated) {
-        std::vector<double> d;
-        for (const std::uint32_t i : members) {
+        std::vector<double> d;  // a strided sample of at most max_samples points
+        const std::size_t stride = (members.size() + params.max_samples - 1) / params.max_samples;
+        for (std::size_t k = 0; k < members.size(); k += stride) {
+            const std::uint32_t i = members[k];
             if (labels[i] >= 1 && labels[i] <= peaks.size()) {
                 d.push_back((vec(points[i]) - peaks[labels[i] - 1].centre).norm());
             }
