@@ -1,6 +1,7 @@
 // pc_count: report the clusters in `label`.
 
 #include <pc/cli/tool.h>
+#include <pc/core/error.h>
 #include <pc/pipeline/steps.h>
 
 namespace pl = pc::pipeline;
@@ -20,7 +21,13 @@ int main(int argc, char** argv) {
     tool.epilog("\nAn empty cloud counts 0. See docs/tools/pc_count.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         const pc::io::Blob labelled = io.read();
-        const auto summary = pl::summarize(labelled, min_points);
+        const auto summary = [&] {
+            try {
+                return pl::summarize(labelled, min_points);
+            } catch (const pc::IoError& e) {
+                throw pc::IoError(io.input_name() + ": " + e.what());  // name the input
+            }
+        }();
         const auto warnings = pl::count_warnings(summary, labelled.size());
         for (const auto& w : warnings) {
             io.warn(w);

@@ -1,5 +1,6 @@
 // pc_transform: apply an affine transform (matrix, scale, rotation, translation, nerfstudio's
 // dataparser transform), then optionally centre and normalise. Normals rotate with the points.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -82,9 +83,10 @@ int main(int argc, char** argv) {
         m = s * m;
         if (!rotate_text.empty()) {
             const auto comma = rotate_text.rfind(',');
-            if (comma == std::string::npos) {
-                throw pc::InvalidArgument("--rotate: expected AX,AY,AZ,DEG, got '" + rotate_text +
-                                          "'");
+            if (std::count(rotate_text.begin(), rotate_text.end(), ',') != 3) {
+                throw pc::InvalidArgument(
+                    "--rotate: expected AX,AY,AZ,DEG (an axis and an angle in degrees), got '" +
+                    rotate_text + "'");
             }
             const auto axis = pc::cli::parse_triple("rotate", rotate_text.substr(0, comma));
             m = pf::rotation(axis, pc::cli::parse_double("rotate", rotate_text.substr(comma + 1))) *

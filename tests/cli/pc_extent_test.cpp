@@ -67,7 +67,9 @@ TEST(PcExtent, PerLabelWithoutLabelNamesTheFile) {
     spit(dir.file("b.pcd"), xyz_header("1", "ascii") + "1 2 3\n");
     const RunResult r = run_shell("@pc_extent --per-label " + dir.file("b.pcd"));
     EXPECT_EQ(r.code, 1);
-    EXPECT_EQ(r.err, "pc_extent: error: " + dir.file("b.pcd") + ": cloud has no 'label' field\n");
+    EXPECT_EQ(r.err, "pc_extent: error: " + dir.file("b.pcd") +
+                         ": cloud has no 'label' field (label its clusters first: pc_dbscan, then "
+                         "pc_recursive_split; or pc_fruitcount --cloud)\n");
 }
 
 }  // namespace

@@ -91,6 +91,33 @@ TEST(PcTransform, BadArgumentsAreUsageErrors) {
     EXPECT_EQ(run_shell("@pc_transform --nerfstudio /nonexistent.json -i " + kSample).code, 2);
 }
 
+TEST(Messages, SayWhatWasExpectedAndWhatToDo) {
+    // issue 21's rough edges, each message as a new user reads it
+    const RunResult rotate = run_shell("@pc_transform --rotate 0,0,1 -i " + kSample);
+    EXPECT_EQ(rotate.code, 2);
+    EXPECT_NE(rotate.err.find("expected AX,AY,AZ,DEG (an axis and an angle in degrees), got "
+                              "'0,0,1'"),
+              std::string::npos)
+        << rotate.err;
+    const RunResult preset = run_shell("@pc_fruitcount --preset bogus -i " + kSample);
+    EXPECT_EQ(preset.code, 2);
+    EXPECT_NE(preset.err.find("(known: dense, paper-dense, paper-sparse, invnerfseg)"),
+              std::string::npos)
+        << preset.err;
+    const RunResult typo = run_shell("@pc_dbscan --esp 3 -i " + kSample);
+    EXPECT_EQ(typo.code, 2);
+    EXPECT_NE(typo.err.find("unrecognised option '--esp'; did you mean --eps?"), std::string::npos)
+        << typo.err;
+    const RunResult far = run_shell("@pc_dbscan --zzzzzz 3 -i " + kSample);
+    EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+    const RunResult unlabelled = run_shell("@pc_count -i " + kSample);
+    EXPECT_EQ(unlabelled.code, 1);
+    EXPECT_EQ(unlabelled.err,
+              "pc_count: error: " + kSample +
+                  ": cloud has no 'label' field (label its clusters first: "
+                  "pc_dbscan, then pc_recursive_split; or pc_fruitcount --cloud)\n");
+}
+
 TEST(PcCompare, TakesTwoInputsWithAFromStdinWhenOnlyBIsGiven) {
     EXPECT_EQ(run_shell("@pc_compare " + kSample + " " + kSample + " " + kSample).code, 2);
     const RunResult piped = run_shell("@pc_compare --plain-is-not-an-option " + kSample);

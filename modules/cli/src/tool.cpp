@@ -12,6 +12,7 @@
 #include <iostream>
 #include <limits>
 #include <mutex>
+#include <numeric>
 #include <sstream>
 
 #include <fcntl.h>
@@ -456,9 +457,9 @@ void Tool::presets(const std::vector<std::string>& names,
     impl_->own.add_options()(
         "preset", po::value<std::string>(&impl_->preset),
         ("named parameter set, applied before explicit options: " + list).c_str());
-    impl_->apply_preset = [names, apply = std::move(apply)](const std::string& p) {
+    impl_->apply_preset = [names, list, apply = std::move(apply)](const std::string& p) {
         if (std::find(names.begin(), names.end(), p) == names.end()) {
-            throw InvalidArgument("--preset: unknown preset '" + p + "'");
+            throw InvalidArgument("--preset: unknown preset '" + p + "' (known: " + list + ")");
         }
         apply(p);
     };
@@ -519,6 +520,40 @@ void tune_allocator() {
     std::call_once(once, tune_allocator_once);
 }
 
+namespace {
+
+/// "; did you mean --eps?" when one option's name is within two edits of `given` (`--esp`).
+std::string did_you_mean(std::string given, const po::options_description& options) {
+    given.erase(0, given.find_first_not_of('-'));
+    const auto distance = [](const std::string& a, const std::string& b) {
+        std::vector<std::size_t> row(b.size() + 1);
+        std::iota(row.begin(), row.end(), std::size_t{0});
+        for (std::size_t i = 1; i <= a.size(); ++i) {
+            std::size_t diagonal = row[0];
+            row[0] = i;
+            for (std::size_t j = 1; j <= b.size(); ++j) {
+                const std::size_t up = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+                diagonal = up;
+            }
+        }
+        return row[b.size()];
+    };
+    std::string best;
+    std::size_t best_distance = 3;
+    for (const auto& o : options.options()) {
+        const std::string name = o->long_name();
+        const std::size_t d = name.empty() || name == "inputs" ? 3 : distance(given, name);
+        if (d < best_distance) {
+            best_distance = d;
+            best = name;
+        }
+    }
+    return best.empty() ? "" : "; did you mean --" + best + "?";
+}
+
+}  // namespace
+
 int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) {
     tune_allocator();
     std::signal(SIGPIPE, SIG_IGN);  // a closed pipe becomes EPIPE, handled quietly below
@@ -575,6 +610,10 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
         }
         body(io);
         return kOk;
+    } catch (const po::unknown_option& e) {
+        report(std::string(e.what()) + did_you_mean(e.get_option_name(), parse_set) + " (try '" +
+               im.name + " --help')");
+        return kUsage;
     } catch (const po::error& e) {
         report(std::string(e.what()) + " (try '" + im.name + " --help')");
         return kUsage;

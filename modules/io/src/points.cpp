@@ -153,7 +153,10 @@ std::vector<Rgb> colours(const Blob& blob) {
 std::vector<std::uint32_t> labels(const Blob& blob, const std::string& name) {
     const Field* f = find_field(blob, name);
     if (f == nullptr) {
-        throw IoError("cloud has no '" + name + "' field");
+        throw IoError("cloud has no '" + name + "' field" +
+                      (name == "label" ? " (label its clusters first: pc_dbscan, then "
+                                         "pc_recursive_split; or pc_fruitcount --cloud)"
+                                       : ""));
     }
     if (is_real(f->datatype) || f->count != 1) {
         throw IoError("field '" + name + "' must be an integer with COUNT 1, got " +
