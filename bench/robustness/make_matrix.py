@@ -63,55 +63,38 @@ lines = list(draw(rng, FAMILIES, COLOURS, range(1, 241),
                       family == 'grape' or colour == 'yellow' or mode == 'stripes' or rng.random() < 0.2)
                   else 'tune'))
 
-# A second held-out part, drawn after the first was scored (session 18) and never looked at
-# since: new seeds, and a family and a colour no method has seen (tomato-like trusses: 25 mm,
-# bunches of 3-6 touching; brown-red fruit). Score it once, when a changed method is final.
-FAMILIES2 = dict(FAMILIES)
-FAMILIES2['truss'] = (0.025, '--species plum --fruit-radius 0.025 --bunch-min 3 --bunch-max 6 '
-                             '--touch-gap 0.002 --overlap 0.05 --fruit-count 80 --canopy 0.6,0.6,0.5')
-COLOURS2 = dict(COLOURS)
-COLOURS2['brown'] = (140, 70, 40)
-lines += draw(random.Random(2027), FAMILIES2, COLOURS2, range(241, 341),
-              lambda family, colour, mode: 'held-out-2')
-
-# A third held-out part, drawn once the second had been scored (session 19) and then used to
-# choose one change (so it is a tune part now): new seeds, a family and a colour no method has
-# seen (citrus-like: 45 mm, single or in touching pairs; dark red fruit, value 0.39). Scored once,
-# then one of its failures looked at (so it is seen now too).
-FAMILIES3 = dict(FAMILIES2)
-FAMILIES3['citrus'] = (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 2 '
-                              '--touch-gap 0.003 --fruit-count 50 --canopy 0.9,0.9,0.7')
-COLOURS3 = dict(COLOURS2)
-COLOURS3['dark-red'] = (100, 20, 25)
-lines += draw(random.Random(2028), FAMILIES3, COLOURS3, range(341, 441),
-              lambda family, colour, mode: 'held-out-3')
-
-# A fourth, drawn when the third had been scored and then looked at (session 19); scored once
-# at the end of session 19 (0.922), then its failures looked at.
-# New seeds; crab-apple-like fruit (15 mm, bunches of 2-5 touching) and pink fruit.
-FAMILIES4 = dict(FAMILIES3)
-FAMILIES4['crab'] = (0.015, '--species plum --fruit-radius 0.015 --bunch-min 2 --bunch-max 5 '
-                            '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')
-COLOURS4 = dict(COLOURS3)
-COLOURS4['pink'] = (235, 130, 160)
-lines += draw(random.Random(2029), FAMILIES4, COLOURS4, range(441, 541),
-              lambda family, colour, mode: 'held-out-4')
-
-# A fifth, drawn when the fourth had been scored (session 19, 0.922) and its failures looked at:
-# never scored. New seeds; olive-like fruit (8 mm, bunches of 3-8 touching) and pale fruit.
-FAMILIES5 = dict(FAMILIES4)
-FAMILIES5['olive'] = (0.008, '--species plum --fruit-radius 0.008 --bunch-min 3 --bunch-max 8 '
-                             '--touch-gap 0.0005 --fruit-count 200 --canopy 0.5,0.5,0.4')
-COLOURS5 = dict(COLOURS4)
-COLOURS5['pale'] = (225, 215, 170)
-lines += draw(random.Random(2030), FAMILIES5, COLOURS5, range(541, 641),
-              lambda family, colour, mode: 'held-out-5')
+# The later held-out parts, each drawn after the one before had been scored: new seeds, and a
+# family and a colour no method had seen (added to those of the parts before). Each part's
+# history (scored when, looked at since) is the table of parts in docs/robustness.md.
+LATER_PARTS = [
+    # part, seed, family, (radius m, pc_synth flags), colour, rgb
+    # 2 (session 18): tomato-like trusses, 25 mm, bunches of 3-6 touching; brown-red fruit
+    ('held-out-2', 2027, 'truss', (0.025, '--species plum --fruit-radius 0.025 --bunch-min 3 '
+     '--bunch-max 6 --touch-gap 0.002 --overlap 0.05 --fruit-count 80 --canopy 0.6,0.6,0.5'),
+     'brown', (140, 70, 40)),
+    # 3 (session 19): citrus-like, 45 mm, single or in touching pairs; dark red, value 0.39
+    ('held-out-3', 2028, 'citrus', (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 '
+     '--bunch-max 2 --touch-gap 0.003 --fruit-count 50 --canopy 0.9,0.9,0.7'),
+     'dark-red', (100, 20, 25)),
+    # 4 (session 19): crab-apple-like, 15 mm, bunches of 2-5 touching; pink fruit
+    ('held-out-4', 2029, 'crab', (0.015, '--species plum --fruit-radius 0.015 --bunch-min 2 '
+     '--bunch-max 5 --touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5'),
+     'pink', (235, 130, 160)),
+    # 5 (session 19): olive-like, 8 mm, bunches of 3-8 touching; pale fruit
+    ('held-out-5', 2030, 'olive', (0.008, '--species plum --fruit-radius 0.008 --bunch-min 3 '
+     '--bunch-max 8 --touch-gap 0.0005 --fruit-count 200 --canopy 0.5,0.5,0.4'),
+     'pale', (225, 215, 170)),
+]
+families, colours, first = dict(FAMILIES), dict(COLOURS), 241
+for part, seed, family, spec, colour, rgb in LATER_PARTS:
+    families[family] = spec
+    colours[colour] = rgb
+    lines += draw(random.Random(seed), families, colours, range(first, first + 100),
+                  lambda family, colour, mode, part=part: part)
+    first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
 with open(out, 'w') as f:
     f.write('\n'.join(lines) + '\n')
-print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune, '
-      f'{sum("|held-out-2|" in l for l in lines)} in the second held-out part, '
-      f'{sum("|held-out-3|" in l for l in lines)} in the third, '
-      f'{sum("|held-out-4|" in l for l in lines)} in the fourth, '
-      f'{sum("|held-out-5|" in l for l in lines)} in the fifth')
+counts = ', '.join(f'{sum(f"|{p}|" in l for l in lines)} in {p}' for p, *_ in LATER_PARTS)
+print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune, {counts}')
