@@ -33,10 +33,16 @@ inline cv::Mat read_image(const std::string& path) {
     return m;
 }
 
-inline bool is_jpeg(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
+/// The file's extension in lower case (".png", ".jpg", ...).
+inline std::string lower_extension(const std::filesystem::path& path) {
+    std::string ext = path.extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return ext;
+}
+
+inline bool is_jpeg(const std::string& path) {
+    const std::string ext = lower_extension(path);
     return ext == ".jpg" || ext == ".jpeg";
 }
 

@@ -34,9 +34,7 @@ std::map<std::string, std::string> images_in(const std::string& dir) {
     }
     std::map<std::string, std::string> out;
     for (const auto& e : fs::directory_iterator(dir)) {
-        std::string ext = e.path().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        const std::string ext = pc::tools::lower_extension(e.path());
         if (!e.is_regular_file() || (ext != ".png" && ext != ".jpg" && ext != ".jpeg" &&
                                      ext != ".bmp" && ext != ".tif" && ext != ".tiff")) {
             continue;

@@ -74,6 +74,17 @@ Eigen::Matrix4d matrix4(const json& v, const std::string& what) {
     return m;
 }
 
+/// The image size of `c`; pc::IoError unless both are whole numbers from 1 to 1000000 (`what`
+/// names them).
+void set_size(Intrinsics& c, double width, double height, const std::string& what) {
+    if (width != std::floor(width) || height != std::floor(height) || width < 1 || height < 1 ||
+        width > 1e6 || height > 1e6) {
+        throw IoError(what + " must be whole numbers from 1 to 1000000");
+    }
+    c.width = static_cast<int>(width);
+    c.height = static_cast<int>(height);
+}
+
 /// transforms.json intrinsics, given at the top level and overridden per frame.
 struct Partial {
     std::map<std::string, double> v;
@@ -105,11 +116,7 @@ struct Partial {
             throw IoError(what + ": no image size (\"w\" and \"h\")");
         }
         const double w = get("w", 0), h = get("h", 0);
-        if (w != std::floor(w) || h != std::floor(h) || w < 1 || h < 1 || w > 1e6 || h > 1e6) {
-            throw IoError(what + ": \"w\" and \"h\" must be whole numbers from 1 to 1000000");
-        }
-        c.width = static_cast<int>(w);
-        c.height = static_cast<int>(h);
+        set_size(c, w, h, what + ": \"w\" and \"h\"");
         if (v.count("fl_x")) {
             c.fx = get("fl_x", 0);
         } else if (v.count("camera_angle_x")) {
@@ -231,12 +238,7 @@ Intrinsics colmap_intrinsics(Model model,
                              const std::string& what) {
     Intrinsics c;
     c.model = model;
-    if (width != std::floor(width) || height != std::floor(height) || width < 1 || height < 1 ||
-        width > 1e6 || height > 1e6) {
-        throw IoError(what + ": width and height must be whole numbers from 1 to 1000000");
-    }
-    c.width = static_cast<int>(width);
-    c.height = static_cast<int>(height);
+    set_size(c, width, height, what + ": width and height");
     switch (model) {
         case Model::kSimplePinhole:
         case Model::kSimpleRadial:

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <pc/cameras/lift.h>
+#include <pc/cameras/render.h>
 #include <pc/core/error.h>
 
 namespace pc::cameras {
@@ -19,22 +20,11 @@ constexpr double kPi = 3.141592653589793;
 const std::vector<Eigen::Vector3d> kCentres = {{0, 0, 0.15}, {0.3, -0.2, 0.15}, {-0.35, 0.3, 0.2}};
 constexpr double kRadius = 0.1, kSpacing = 0.01;
 
-/// A camera at `eye` looking at the origin, z up in the world.
+/// A camera at `eye` looking at the origin, z up in the world: 640 x 480 pixels, f = 600 (a pixel
+/// 4 mm at the fruit: finer than the 1 cm point spacing).
 View look_at(const Eigen::Vector3d& eye) {
-    View v;
-    v.camera.width = 640;  // a pixel 4 mm at the fruit: finer than the 1 cm point spacing
-    v.camera.height = 480;
-    v.camera.fx = v.camera.fy = 600;
-    v.camera.cx = 320;
-    v.camera.cy = 240;
-    const Eigen::Vector3d forward = (-eye).normalized();
-    const Eigen::Vector3d right = forward.cross(Eigen::Vector3d::UnitZ()).normalized();
-    const Eigen::Vector3d down = forward.cross(right);
-    v.rotation.row(0) = right;
-    v.rotation.row(1) = down;
-    v.rotation.row(2) = forward;
-    v.translation = -v.rotation * eye;
-    return v;
+    return cameras::look_at(eye, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitZ(), 640, 480,
+                            2 * std::atan(240.0 / 600));
 }
 
 /// 1 where the pixel's ray meets a sphere before the plane z = 0.
