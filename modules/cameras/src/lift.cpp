@@ -1,7 +1,4 @@
-#include <algorithm>
 #include <exception>
-#include <limits>
-#include <numeric>
 #include <string>
 
 #include <pc/cameras/lift.h>
