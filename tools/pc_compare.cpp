@@ -2,9 +2,7 @@
 #include <cmath>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
-#include <pc/cli/tool.h>
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
 #include <pc/features/compare.h>
 #include <pc/io/points.h>
@@ -13,10 +11,16 @@ namespace pf = pc::features;
 
 namespace {
 
-nlohmann::ordered_json stats_json(const pf::DirectionStats& s) {
-    return {{"points", s.points}, {"mean", s.mean}, {"median", s.median},
-            {"rms", s.rms},       {"max", s.max},   {"within_tau", s.within_tau}};
+nlohmann::ordered_json number(double v) {
+    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
 }
+
+nlohmann::ordered_json stats_json(const pf::DirectionStats& s) {
+    return {{"points", s.points},   {"mean", number(s.mean)}, {"median", number(s.median)},
+            {"rms", number(s.rms)}, {"max", number(s.max)},   {"within_tau", s.within_tau}};
+}
+
+std::string cell(double v) { return std::isfinite(v) ? pc::format_number(v) : ""; }
 
 }  // namespace
 
@@ -50,7 +54,12 @@ int main(int argc, char** argv) {
         p.validate();
         const pc::Cloud a = pc::io::xyz(io.read(inputs[0]));
         const pc::Cloud b = pc::io::xyz(io.read(inputs[1]));
+        io.note("comparing: nearest neighbours both ways, then voxel coverage");
         const pf::CompareResult r = pf::compare(a, b, p);
+        const std::vector<std::string> warnings = pf::compare_warnings(r, p);
+        for (const auto& w : warnings) {
+            io.warn(w);
+        }
         std::ostringstream out;
         if (csv) {
             out << "a,b,tau,voxel,a_points,b_points,a_to_b_mean,a_to_b_median,a_to_b_rms,a_to_b_"
@@ -63,7 +72,7 @@ int main(int argc, char** argv) {
                              r.a_to_b.mean, r.a_to_b.median, r.a_to_b.rms, r.a_to_b.max,
                              r.b_to_a.mean, r.b_to_a.median, r.b_to_a.rms, r.b_to_a.max, r.chamfer,
                              r.precision, r.recall, r.fscore, r.interior_coverage}) {
-                out << ',' << pc::format_number(v);
+                out << ',' << cell(v);
             }
             out << '\n';
         } else if (markdown) {
@@ -82,9 +91,9 @@ int main(int argc, char** argv) {
                 out << "| " << name << " | " << buf << " |\n";
             }
         } else {
-            nlohmann::ordered_json j;
-            j["a"] = pc::io::display_name(inputs[0]);
-            j["b"] = pc::io::display_name(inputs[1]);
+            nlohmann::ordered_json j{{"a", pc::io::display_name(inputs[0])},
+                                     {"b", pc::io::display_name(inputs[1])}};
+            j.update(pc::cli::report_header(io));
             j["tau"] = p.tau;
             j["voxel"] = p.voxel;
             j["a_to_b"] = stats_json(r.a_to_b);
@@ -96,6 +105,8 @@ int main(int argc, char** argv) {
             j["interior_coverage"] = {{"b_voxels", r.b_voxels},
                                       {"shared_voxels", r.shared_voxels},
                                       {"fraction", r.interior_coverage}};
+            j["box_overlap"] = r.box_overlap;
+            j["warnings"] = warnings;
             out << j.dump(1) << '\n';
         }
         io.write_text(out.str());

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include <pc/cli/tool.h>
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
 #include <pc/evaluation/instances.h>
 #include <pc/evaluation/score_report.h>
@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
         io.write_text(ev::score_report(s, name.empty() ? input : name, input, mode,
                                        csv        ? ev::ScoreFormat::kCsv
                                        : markdown ? ev::ScoreFormat::kMarkdown
-                                                  : ev::ScoreFormat::kJson));
+                                                  : ev::ScoreFormat::kJson,
+                                       pc::cli::report_header(io)));
     });
 }

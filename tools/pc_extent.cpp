@@ -3,7 +3,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include <pc/cli/tool.h>
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
 #include <pc/features/extent.h>
 #include <pc/features/extent_report.h>
@@ -37,33 +37,48 @@ int main(int argc, char** argv) {
                                       " names for " + std::to_string(inputs.size()) + " inputs");
         }
         std::vector<pc::features::ExtentRow> rows;
+        std::size_t failed = 0;
         for (std::size_t k = 0; k < inputs.size(); ++k) {
-            const pc::io::Blob blob = io.read(inputs[k]);
-            const pc::io::XyzPoints points(blob);
-            const pc::XyzView& cloud = points.view();
             pc::features::ExtentRow r;
             r.input = pc::io::display_name(inputs[k]);
             r.name = names.empty()
                          ? (inputs[k] == "-" ? r.input
                                              : std::filesystem::path(inputs[k]).stem().string())
                          : names[k];
-            r.whole = pc::features::extent(cloud);
-            if (per_label) {
-                try {
-                    r.clusters = pc::features::extent_per_label(
-                        cloud,
-                        blob.size() ? pc::io::labels(blob, "label") : std::vector<std::uint32_t>{});
-                } catch (const pc::IoError& e) {
-                    throw pc::IoError(r.input + ": " + e.what());  // name the input, as readers do
+            try {  // a failing input gets an error row; the others go on (exit 1 at the end)
+                const pc::io::Blob blob = io.read(inputs[k]);
+                const pc::io::XyzPoints points(blob);
+                const pc::XyzView& cloud = points.view();
+                r.whole = pc::features::extent(cloud);
+                if (per_label) {
+                    try {
+                        r.clusters = pc::features::extent_per_label(
+                            cloud, blob.size() ? pc::io::labels(blob, "label")
+                                               : std::vector<std::uint32_t>{});
+                    } catch (const pc::IoError& e) {
+                        throw pc::IoError(r.input + ": " + e.what());  // name the input
+                    }
                 }
+                for (const auto& w : pc::features::extent_warnings(r)) {
+                    io.warn(r.input + ": " + w);
+                }
+            } catch (const pc::InvalidArgument&) {
+                throw;
+            } catch (const std::exception& e) {
+                r.error = e.what();
+                io.fail(r.error);
+                ++failed;
             }
             rows.push_back(std::move(r));
+        }
+        if (failed == rows.size()) {
+            return;  // nothing measured: only the error lines
         }
         io.write_text(
             pc::features::extent_report(rows,
                                         csv ? pc::features::ExtentFormat::kCsv
                                             : (markdown ? pc::features::ExtentFormat::kMarkdown
                                                         : pc::features::ExtentFormat::kJson),
-                                        per_label));
+                                        per_label, pc::cli::report_header(io)));
     });
 }

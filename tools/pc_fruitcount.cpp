@@ -1,8 +1,10 @@
 // pc_fruitcount: the whole counting chain in one process (colour filter, crop, voxel, kNN outlier,
 // DBSCAN, recursive split, count), with the same labels as the piped chain.
-#include <pc/cli/tool.h>
+#include <filesystem>
+
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
-#include <pc/pipeline/steps.h>
+#include <pc/pipeline/count_report.h>
 
 #include "color_options.h"
 #include "split_options.h"
@@ -10,7 +12,26 @@
 namespace pl = pc::pipeline;
 namespace seg = pc::segmentation;
 
+namespace {
+
+/// `pattern` with every "{stem}" replaced by the input's file name without its extension.
+std::string cloud_path(std::string pattern, const std::string& input) {
+    const std::string stem =
+        input == "-" ? std::string("stdin") : std::filesystem::path(input).stem().string();
+    for (std::size_t at; (at = pattern.find("{stem}")) != std::string::npos;) {
+        pattern.replace(at, 6, stem);
+    }
+    return pattern;
+}
+
+std::string triple_text(const std::array<double, 3>& v) {
+    return pc::format_number(v[0]) + "," + pc::format_number(v[1]) + "," + pc::format_number(v[2]);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    std::vector<std::string> inputs;
     // Each step's Params live here, bound to options; the preset fills them first.
     pl::ChainParams chain = pl::preset("dense");
     pc::tools::ColorOptions color;
@@ -21,13 +42,14 @@ int main(int argc, char** argv) {
     seg::RecursiveSplitParams split = *chain.split;
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
-    bool plain = false, eps_check = false;
+    bool eps_check = false;
     std::string cloud_out;
 
     pc::cli::Tool tool("pc_fruitcount",
                        "count fruit: colour filter, crop, voxel, kNN outlier, DBSCAN, recursive "
                        "split and count in one process (default preset: dense)",
                        pc::cli::Output::kText);
+    tool.inputs(&inputs, "clouds, one report each ('-' = stdin, the default)");
     tool.presets(pl::preset_names(), [&](const std::string& name) {
         chain = pl::preset(name);
         color.from_preset(chain);
@@ -44,21 +66,24 @@ int main(int argc, char** argv) {
             crop.min = pc::cli::parse_triple("crop-min", s);
             chain.crop = crop;
         },
-        "crop: lower corner x,y,z, included (enables the crop step)");
+        "crop: lower corner x,y,z, included (enables the crop step)",
+        [&] { return chain.crop ? triple_text(chain.crop->min) : std::string("off"); });
     tool.option(
         "crop-max", "off",
         [&](const std::string& s) {
             crop.max = pc::cli::parse_triple("crop-max", s);
             chain.crop = crop;
         },
-        "crop: upper corner x,y,z, included (enables the crop step)");
+        "crop: upper corner x,y,z, included (enables the crop step)",
+        [&] { return chain.crop ? triple_text(chain.crop->max) : std::string("off"); });
     tool.option(
         "leaf", "off",
         [&](const std::string& s) {
             voxel.leaf = pc::cli::parse_double("leaf", s);
             chain.voxel = voxel;
         },
-        "voxel: leaf size (enables the voxel step)");
+        "voxel: leaf size (enables the voxel step)",
+        [&] { return chain.voxel ? pc::format_number(chain.voxel->leaf) : std::string("off"); });
     tool.option("k", &knn.k, "kNN outlier: neighbours, the point itself NOT counted");
     tool.option("drop-percentile", &knn.drop_percentile,
                 "kNN outlier: drop mean distance >= P(100-P)");
@@ -69,7 +94,8 @@ int main(int argc, char** argv) {
         "eps", pl::eps_text(chain.dbscan, chain.eps),
         [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
         "DBSCAN: neighbour iff distance <= eps; 'auto' (4 x the point spacing), 'Nxs' (N x it), "
-        "'knee' (k-distance knee)");
+        "'knee' (k-distance knee)",
+        [&] { return pl::eps_text(chain.dbscan, chain.eps); });
     tool.option("min-points", &chain.dbscan.min_points,
                 "DBSCAN: core needs this many, itself included");
     pc::tools::bind_split_options(tool, split, "split: ");
@@ -80,8 +106,11 @@ int main(int argc, char** argv) {
               "count again at 0.8 and 1.25 x the eps used (DBSCAN and split rerun): a count that "
               "swings by more than 2x is a warning; eps and counts go to the report");
     tool.option("gt", &gt, "ground-truth count: adds error and recovery to the report");
-    tool.flag("plain", &plain, "print only the count");
-    tool.option("cloud", &cloud_out, "also write the labelled cloud (binary PCD) to this file");
+    const pc::cli::Report report(tool, "count");
+    tool.option("cloud", &cloud_out,
+                "also write the labelled cloud to this file (binary PCD, or binary PLY for a .ply "
+                "name); {stem} becomes the input's name without extension (needed for several "
+                "inputs)");
     tool.epilog("\nSee docs/tools/pc_fruitcount.md for the presets and the steps.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         color.apply(chain);
@@ -97,29 +126,33 @@ int main(int argc, char** argv) {
         if (chain.voxel) {
             chain.voxel = voxel;
         }
-        pc::io::Blob in = io.read();
-        const std::size_t points = in.size();
-        const pl::ChainResult r =
-            pl::run_chain(std::move(in), chain, [&](const std::string& n) { io.note(n); });
-        const auto summary = pl::summarize(r.labelled, chain.count_min_points);
-        std::vector<std::string> warnings = r.warnings;
-        for (const auto& w : pl::count_warnings(summary, points)) {
-            warnings.push_back(w);
+        if (inputs.size() > 1 && !cloud_out.empty() &&
+            cloud_out.find("{stem}") == std::string::npos) {
+            throw pc::InvalidArgument(
+                "--cloud: with several inputs, name the files with {stem} "
+                "(for example --cloud out/{stem}_labelled.pcd)");
         }
-        std::optional<pl::EpsCheck> check;
-        if (eps_check) {
-            check = pl::check_eps(r, chain);
-            if (check->warning) {
-                warnings.push_back(*check->warning);
+        report.each(io, inputs, [&](const std::string& path) {
+            pc::io::Blob in = io.read(path);
+            const std::size_t points = in.size();
+            const pl::ChainResult r =
+                pl::run_chain(std::move(in), chain, [&](const std::string& n) { io.note(n); });
+            const auto summary = pl::summarize(r.labelled, chain.count_min_points);
+            std::vector<std::string> warnings = r.warnings;
+            for (const auto& w : pl::count_warnings(summary, points)) {
+                warnings.push_back(w);
             }
-        }
-        for (const auto& w : warnings) {
-            io.warn(w);
-        }
-        if (!cloud_out.empty()) {
-            pc::cli::write_cloud_file(cloud_out, r.labelled);
-        }
-        io.write_text(plain ? std::to_string(summary.clusters.size()) + "\n"
-                            : pl::count_report(summary, gt, r.steps, warnings, check));
+            std::optional<pl::EpsCheck> check;
+            if (eps_check) {
+                check = pl::check_eps(r, chain);
+                if (check->warning) {
+                    warnings.push_back(*check->warning);
+                }
+            }
+            if (!cloud_out.empty()) {
+                pc::cli::write_cloud_file(cloud_path(cloud_out, path), r.labelled);
+            }
+            return pl::count_report(summary, gt, r.steps, warnings, check);
+        });
     });
 }

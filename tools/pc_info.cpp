@@ -1,12 +1,13 @@
-// pc_info: a report on one cloud, like `pdal info`: size, encoding, fields, bounds, statistics.
+// pc_info: a report on each cloud, like `pdal info`: size, encoding, fields, bounds, statistics;
+// with --stats also percentiles, colour and spacing.
 #include <cmath>
-#include <sstream>
 
-#include <nlohmann/json.hpp>
-
-#include <pc/cli/tool.h>
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
+#include <pc/filters/color_stats.h>
 #include <pc/io/info.h>
+#include <pc/io/points.h>
+#include <pc/search/spacing.h>
 
 namespace {
 
@@ -14,11 +15,27 @@ using nlohmann::ordered_json;
 
 ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
 
-ordered_json to_json(const pc::io::CloudInfo& info,
-                     const std::string& input,
-                     const std::string& fmt) {
+/// As floats: channels come from 8-bit or float colours, more digits would be noise.
+ordered_json spread(const pc::filters::Spread& s) {
+    const auto f = [](double v) {
+        return std::isfinite(v) ? ordered_json(static_cast<float>(v)) : ordered_json(nullptr);
+    };
+    return {{"p10", f(s.p10)}, {"median", f(s.median)}, {"p90", f(s.p90)}};
+}
+
+ordered_json color_json(const pc::filters::ColorStats& c) {
+    ordered_json hues = ordered_json::object();
+    for (std::size_t b = 0; b < c.hue_histogram.size(); ++b) {
+        hues[pc::filters::kHueNames[b]] = c.hue_histogram[b];
+    }
+    return {{"red", spread(c.red)},     {"green", spread(c.green)},
+            {"blue", spread(c.blue)},   {"saturation", spread(c.saturation)},
+            {"value", spread(c.value)}, {"grey", c.grey},
+            {"hue_histogram", hues}};
+}
+
+ordered_json to_json(const pc::io::CloudInfo& info, const std::string& fmt) {
     ordered_json j;
-    j["input"] = input;
     j["format"] = fmt;
     j["points"] = info.points;
     j["width"] = info.width;
@@ -26,6 +43,11 @@ ordered_json to_json(const pc::io::CloudInfo& info,
     j["organised"] = info.organised;
     j["is_dense"] = info.is_dense;
     j["non_finite_points"] = info.non_finite_points;
+    std::string names;
+    for (const auto& f : info.fields) {
+        names += (names.empty() ? "" : " ") + f.name;
+    }
+    j["field_names"] = names;
     j["colour"] = {{"present", !info.colour.empty()}, {"fields", info.colour}};
     if (info.has_xyz && info.non_finite_points < info.points) {
         ordered_json lo = ordered_json::array(), hi = ordered_json::array();
@@ -47,17 +69,24 @@ ordered_json to_json(const pc::io::CloudInfo& info,
             jf["packed_colour"] = true;
         }
         if (!f.stats.empty()) {
-            ordered_json mins = ordered_json::array(), maxs = ordered_json::array(),
-                         means = ordered_json::array();
-            for (const auto& s : f.stats) {
-                mins.push_back(number(s.min));
-                maxs.push_back(number(s.max));
-                means.push_back(number(s.mean));
-            }
+            // One value per statistic, or one list of them for fields of several elements.
             const bool one = f.stats.size() == 1;
-            jf["min"] = one ? mins[0] : mins;
-            jf["max"] = one ? maxs[0] : maxs;
-            jf["mean"] = one ? means[0] : means;
+            const auto add = [&](const char* key, double pc::io::ElementStats::*member) {
+                ordered_json v = ordered_json::array();
+                for (const auto& s : f.stats) {
+                    v.push_back(number(s.*member));
+                }
+                jf[key] = one ? v[0] : v;
+            };
+            add("min", &pc::io::ElementStats::min);
+            add("max", &pc::io::ElementStats::max);
+            add("mean", &pc::io::ElementStats::mean);
+            add("stddev", &pc::io::ElementStats::stddev);
+            if (std::isfinite(f.stats[0].median) || f.stats[0].finite == 0) {
+                add("p10", &pc::io::ElementStats::p10);
+                add("median", &pc::io::ElementStats::median);
+                add("p90", &pc::io::ElementStats::p90);
+            }
         }
         fields.push_back(jf);
     }
@@ -66,62 +95,43 @@ ordered_json to_json(const pc::io::CloudInfo& info,
     return j;
 }
 
-std::string to_csv(const pc::io::CloudInfo& info) {
-    std::ostringstream out;
-    out << "field,type,size,count,element,min,max,mean,finite\n";
-    const auto num = [](double v) { return std::isfinite(v) ? pc::format_number(v) : ""; };
-    for (const auto& f : info.fields) {
-        if (f.stats.empty()) {
-            out << f.name << ',' << f.type << ',' << f.size << ',' << f.count << ",,,,,\n";
-        }
-        for (std::size_t e = 0; e < f.stats.size(); ++e) {
-            const auto& s = f.stats[e];
-            out << f.name << ',' << f.type << ',' << f.size << ',' << f.count << ',' << e << ','
-                << num(s.min) << ',' << num(s.max) << ',' << num(s.mean) << ',' << s.finite << '\n';
-        }
-    }
-    return out.str();
-}
-
-std::string to_text(const pc::io::CloudInfo& info, const std::string& fmt) {
-    std::ostringstream out;
-    out << "format " << fmt << "\npoints " << info.points << "\nwidth " << info.width << "\nheight "
-        << info.height << "\nnon_finite_points " << info.non_finite_points << "\ncolour "
-        << (info.colour.empty() ? "none" : info.colour) << "\nfields";
-    for (const auto& f : info.fields) {
-        out << ' ' << f.name;
-    }
-    out << '\n';
-    if (info.has_xyz && info.non_finite_points < info.points) {
-        out << "bbox_min " << pc::format_number(info.bbox_min[0]) << ' '
-            << pc::format_number(info.bbox_min[1]) << ' ' << pc::format_number(info.bbox_min[2])
-            << "\nbbox_max " << pc::format_number(info.bbox_max[0]) << ' '
-            << pc::format_number(info.bbox_max[1]) << ' ' << pc::format_number(info.bbox_max[2])
-            << '\n';
-    }
-    return out.str();
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
-    bool csv = false, text = false;
-    pc::cli::Tool tool("pc_info", "report size, encoding, fields, bounds and statistics of a cloud",
+    std::vector<std::string> inputs;
+    bool stats = false;
+    pc::cli::Tool tool("pc_info",
+                       "report size, encoding, fields, bounds and statistics of clouds, one report "
+                       "each",
                        pc::cli::Output::kText);
-    tool.flag("csv", &csv, "one CSV row per field element instead of JSON");
-    tool.flag("text", &text, "'key value' lines instead of JSON");
+    tool.inputs(&inputs, "clouds to describe ('-' = stdin, the default)");
+    tool.flag("stats", &stats,
+              "also percentiles (P10, median, P90) of every field, colour statistics (channels, "
+              "saturation, value, a hue histogram) and point spacing (nearest-neighbour "
+              "distances, duplicate points)");
+    const pc::cli::Report report(tool);
+    tool.epilog("\nSee docs/tools/pc_info.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        if (csv && text) {
-            throw pc::InvalidArgument("--csv and --text exclude each other");
-        }
-        const pc::io::Blob blob = io.read();
-        const pc::io::CloudInfo info = pc::io::describe(blob);
-        if (csv) {
-            io.write_text(to_csv(info));
-        } else if (text) {
-            io.write_text(to_text(info, io.input_format()));
-        } else {
-            io.write_text(to_json(info, io.input_name(), io.input_format()).dump(2) + "\n");
-        }
+        report.each(io, inputs, [&](const std::string& path) {
+            const pc::io::Blob blob = io.read(path);
+            const pc::io::CloudInfo info = pc::io::describe(blob, stats);
+            ordered_json j = to_json(info, io.input_format());
+            if (stats) {
+                if (!j["colour"]["fields"].get<std::string>().empty()) {
+                    j["colour"]["stats"] =
+                        color_json(pc::filters::color_stats(pc::io::colours(blob)));
+                }
+                if (info.has_xyz) {
+                    const pc::io::XyzPoints points(blob);
+                    const auto sp = pc::search::spacing_stats(points.view());
+                    j["spacing"] = {{"p10", sp.p10},
+                                    {"median", sp.median},
+                                    {"p90", sp.p90},
+                                    {"sampled", sp.sampled},
+                                    {"duplicates", sp.duplicates}};
+                }
+            }
+            return j;
+        });
     });
 }

@@ -59,7 +59,7 @@ TEST(Chain, FruitcountReportsErrorAndRecoveryAgainstGroundTruth) {
     ASSERT_EQ(r.code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
     EXPECT_EQ(j["count"], 12);
-    EXPECT_EQ(j["error"], 0.0);
+    EXPECT_EQ(j["count_error"], 0.0);
     EXPECT_EQ(j["recovery"], 1.0);
     ASSERT_EQ(j["clusters"].size(), 12u);
     // Every cluster centroid lies within one fruit radius of a true centre.
@@ -83,7 +83,7 @@ TEST(Chain, FruitcountReportsErrorAndRecoveryAgainstGroundTruth) {
 TEST(Chain, FieldsPassThroughTheWholeChain) {
     const RunResult r = run_shell(piped_chain("paper-dense") + " | @pc_info --text");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("fields x y z rgb label\n"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("field_names x y z rgb label\n"), std::string::npos) << r.out;
 }
 
 TEST(PcDbscan, EpsAutoAndKneeReportTheChosenValueWithVerbose) {
@@ -223,7 +223,7 @@ TEST(PcFruitcount, EpsCheckWarnsWhenTheCountSwingsWithEps) {
 TEST(PcVoxel, CollapsesPointsAndKeepsFields) {
     const RunResult r = run_shell("@pc_voxel --leaf 0.05 -i " + kSample + " | @pc_info --text");
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("fields x y z rgb\n"), std::string::npos);
+    EXPECT_NE(r.out.find("field_names x y z rgb\n"), std::string::npos);
     EXPECT_EQ(run_shell("@pc_voxel --leaf 0 -i " + kSample).code, 2);
 }
 

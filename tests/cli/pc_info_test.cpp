@@ -1,3 +1,7 @@
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -47,16 +51,86 @@ TEST(PcInfo, CountsNonFinitePointsAndKeepsThemOutOfTheBounds) {
 TEST(PcInfo, EmptyCloudReportsZeroPoints) {
     const RunResult r = run_shell("@pc_info --text", xyz_header("0", "binary"));
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_NE(r.out.find("points 0\n"), std::string::npos);
+    EXPECT_NE(r.out.find("\npoints 0\n"), std::string::npos);
 }
 
-TEST(PcInfo, CsvHasOneRowPerFieldElement) {
-    const RunResult r = run_shell("@pc_info --csv", pcd_header("x y z h", "4 4 4 4", "F F F F",
-                                                               "1 1 1 3", "1", "1", "ascii") +
-                                                        "1 2 3 4 5 6\n");
+TEST(PcInfo, CsvHasOneRowPerInputWithEveryFieldElement) {
+    TempDir dir;
+    spit(dir.file("a.pcd"),
+         pcd_header("x y z h", "4 4 4 4", "F F F F", "1 1 1 3", "1", "1", "ascii") +
+             "1 2 3 4 5 6\n");
+    spit(dir.file("b.xyz"), "0 0 0\n2 2 2\n");
+    const RunResult r = run_shell("@pc_info --csv " + dir.file("a.pcd") + " " + dir.file("b.xyz"));
     ASSERT_EQ(r.code, 0) << r.err;
-    EXPECT_EQ(line_count(r.out), 1 + 3 + 3);
-    EXPECT_NE(r.out.find("h,F,4,3,2,6,6,6,1\n"), std::string::npos) << r.out;
+    ASSERT_EQ(line_count(r.out), 3) << r.out;
+    const std::string header = r.out.substr(0, r.out.find('\n'));
+    EXPECT_EQ(header.rfind("input,tool,version,", 0), 0u) << header;
+    EXPECT_NE(header.find(",fields.h.max.2,"), std::string::npos) << header;
+    // h's third element is 6 in a; b has no h: an empty cell, the columns still line up.
+    const auto cells = [](const std::string& line) {
+        std::vector<std::string> out;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, ',');) {
+            out.push_back(c);
+        }
+        return out;
+    };
+    const auto names = cells(header);
+    const auto column = std::find(names.begin(), names.end(), "fields.h.max.2") - names.begin();
+    std::stringstream lines(r.out);
+    std::string line;
+    std::getline(lines, line);
+    std::getline(lines, line);
+    EXPECT_EQ(cells(line)[column], "6") << line;
+    std::getline(lines, line);
+    EXPECT_EQ(line.rfind(dir.file("b.xyz") + ",pc_info,", 0), 0u) << line;
+}
+
+TEST(PcInfo, StatsGiveColourSpacingAndPercentiles) {
+    // Four points 1 apart on a line, one duplicated; pure red, pure green, grey, grey.
+    const std::string cloud =
+        pcd_header("x y z r g b", "4 4 4 1 1 1", "F F F U U U", "1 1 1 1 1 1", "5", "5", "ascii") +
+        "0 0 0 255 0 0\n1 0 0 0 255 0\n2 0 0 128 128 128\n3 0 0 128 128 128\n3 0 0 10 10 10\n";
+    const RunResult r = run_shell("@pc_info --stats", cloud);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["spacing"]["median"], 1.0);
+    EXPECT_EQ(j["spacing"]["duplicates"], 1);
+    EXPECT_EQ(j["colour"]["stats"]["grey"], 3);
+    EXPECT_EQ(j["colour"]["stats"]["hue_histogram"]["red"], 1);
+    EXPECT_EQ(j["colour"]["stats"]["hue_histogram"]["green"], 1);
+    // x is 0 1 2 3 3: numpy.percentile(x, [10, 50, 90]) = 0.4, 2, 3; std = sqrt(1.36).
+    EXPECT_NEAR(j["fields"][0]["p10"].get<double>(), 0.4, 1e-12);
+    EXPECT_EQ(j["fields"][0]["median"], 2.0);
+    EXPECT_EQ(j["fields"][0]["p90"], 3.0);
+    EXPECT_NEAR(j["fields"][0]["stddev"].get<double>(), std::sqrt(1.36), 1e-12);
+    // Without --stats, no percentiles (they cost a pass and a copy a field).
+    const auto plain = nlohmann::json::parse(run_shell("@pc_info", cloud).out);
+    EXPECT_FALSE(plain["fields"][0].contains("median"));
+    EXPECT_FALSE(plain.contains("spacing"));
+}
+
+TEST(PcInfo, ManyInputsOneFailingGetAnErrorRowAndExit1) {
+    TempDir dir;
+    spit(dir.file("a.xyz"), "0 0 0\n");
+    const RunResult r = run_shell("@pc_info --jsonl " + dir.file("a.xyz") + " " +
+                                  dir.file("missing.pcd") + " " + dir.file("a.xyz"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(line_count(r.out), 3) << r.out;
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("missing.pcd: cannot open"), std::string::npos) << r.err;
+    std::stringstream lines(r.out);
+    std::string line;
+    std::vector<nlohmann::json> rows;
+    while (std::getline(lines, line)) {
+        rows.push_back(nlohmann::json::parse(line));
+    }
+    EXPECT_EQ(rows[0]["points"], 1);
+    EXPECT_TRUE(rows[1].contains("error"));
+    EXPECT_FALSE(rows[1].contains("points"));
+    EXPECT_EQ(rows[2]["input"], dir.file("a.xyz"));
+    EXPECT_EQ(rows[2]["tool"], "pc_info");
+    EXPECT_TRUE(rows[2]["parameters"].contains("stats"));
 }
 
 TEST(PcInfo, CsvAndTextTogetherIsAUsageError) {

@@ -39,6 +39,7 @@ struct Binding {
     std::string name;
     bool is_flag = false;
     std::function<void(const std::string&)> assign;  // called only for options given explicitly
+    std::function<std::string()> show;               // the value as used, for reports
 };
 
 template <class T>
@@ -167,6 +168,8 @@ private:
 
 }  // namespace
 
+const char* version() { return PC_VERSION; }
+
 double parse_double(const std::string& option, const std::string& text) {
     return parse_number<double>(option, text);
 }
@@ -227,6 +230,15 @@ void Streams::note(const std::string& message) const {
         std::snprintf(stamp, sizeof stamp, " [%.3f s]", t);
         std::cerr << tool_ << ": " << message << stamp << std::endl;
     }
+}
+
+void Streams::fail(const std::string& message) {
+    failed_ = true;
+    std::cerr << tool_ << ": error: " << message << std::endl;
+}
+
+std::vector<std::pair<std::string, std::string>> Streams::parameters() const {
+    return parameters_ ? parameters_() : std::vector<std::pair<std::string, std::string>>{};
 }
 
 void Streams::warn(const std::string& message) const {
@@ -386,11 +398,21 @@ Tool::~Tool() = default;
 void Tool::option(const std::string& name,
                   const std::string& default_text,
                   std::function<void(const std::string&)> parse,
-                  const std::string& help) {
+                  const std::string& help,
+                  std::function<std::string()> show) {
     impl_->own.add_options()(name.c_str(),
                              po::value<std::string>()->default_value(default_text, default_text),
                              help.c_str());
-    impl_->bindings.push_back({name, false, std::move(parse)});
+    if (!show) {
+        // The text given, or the default: what reproduces the run.
+        auto given = std::make_shared<std::string>(default_text);
+        parse = [given, parse = std::move(parse)](const std::string& s) {
+            parse(s);
+            *given = s;
+        };
+        show = [given] { return *given; };
+    }
+    impl_->bindings.push_back({name, false, std::move(parse), std::move(show)});
 }
 
 namespace {
@@ -398,7 +420,8 @@ template <class T>
 void bind_number(Tool& tool, const std::string& name, T* field, const std::string& help) {
     tool.option(
         name, number_text(*field),
-        [field, name](const std::string& s) { *field = parse_number<T>(name, s); }, help);
+        [field, name](const std::string& s) { *field = parse_number<T>(name, s); }, help,
+        [field] { return number_text(*field); });
 }
 }  // namespace
 
@@ -428,24 +451,31 @@ void Tool::option(const std::string& name, std::optional<double>* field, const s
                 *field = parse_number<double>(name, s);
             }
         },
-        help);
+        help, [field] { return *field ? number_text(**field) : std::string("off"); });
 }
 
 void Tool::option(const std::string& name, std::string* field, const std::string& help) {
     option(
-        name, *field, [field](const std::string& s) { *field = s; }, help);
+        name, *field, [field](const std::string& s) { *field = s; }, help,
+        [field] { return *field; });
 }
 
 void Tool::option(const std::string& name, std::array<double, 3>* field, const std::string& help) {
     const auto& v = *field;
     const std::string text = number_text(v[0]) + "," + number_text(v[1]) + "," + number_text(v[2]);
+    const auto show = [field] {
+        const auto& w = *field;
+        return number_text(w[0]) + "," + number_text(w[1]) + "," + number_text(w[2]);
+    };
     option(
-        name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); }, help);
+        name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); }, help,
+        show);
 }
 
 void Tool::flag(const std::string& name, bool* field, const std::string& help) {
     impl_->own.add_options()(name.c_str(), po::bool_switch(), help.c_str());
-    impl_->bindings.push_back({name, true, [field](const std::string&) { *field = true; }});
+    impl_->bindings.push_back({name, true, [field](const std::string&) { *field = true; },
+                               [field] { return std::string(*field ? "true" : "false"); }});
 }
 
 void Tool::presets(const std::vector<std::string>& names,
@@ -585,7 +615,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             return kOk;
         }
         if (vm.count("version")) {
-            std::cout << im.name << " " << PC_VERSION << '\n';
+            std::cout << im.name << " " << version() << '\n';
             return kOk;
         }
         po::notify(vm);
@@ -608,8 +638,18 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
                 (void)::fcntl(1, F_SETPIPE_SZ, 1 << 20);
             }
         }
+        io.parameters_ = [&im] {
+            std::vector<std::pair<std::string, std::string>> out;
+            if (im.apply_preset) {
+                out.emplace_back("preset", im.preset);
+            }
+            for (const Binding& b : im.bindings) {
+                out.emplace_back(b.name, b.show());
+            }
+            return out;
+        };
         body(io);
-        return kOk;
+        return io.failed_ ? kFailure : kOk;
     } catch (const po::unknown_option& e) {
         report(std::string(e.what()) + did_you_mean(e.get_option_name(), parse_set) + " (try '" +
                im.name + " --help')");

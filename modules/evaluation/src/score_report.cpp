@@ -21,7 +21,8 @@ std::string score_report(const InstanceScores& s,
                          const std::string& name,
                          const std::string& input,
                          const std::string& mode,
-                         ScoreFormat format) {
+                         ScoreFormat format,
+                         const nlohmann::ordered_json& header) {
     std::ostringstream out;
     const std::size_t fp = s.count - s.true_positives, missed = s.gt_count - s.true_positives;
     if (format == ScoreFormat::kCsv) {
@@ -45,6 +46,9 @@ std::string score_report(const InstanceScores& s,
         ordered_json j;
         j["name"] = name;
         j["input"] = input;
+        if (header.is_object()) {
+            j.update(header);
+        }
         j["match"] = mode;
         j["count"] = s.count;
         j["gt_count"] = s.gt_count;
@@ -71,6 +75,14 @@ std::string score_report(const InstanceScores& s,
                                   {"label", x.label}, {"fruit", x.fruit}, {"distance", x.overlap}});
         }
         j["matches"] = m;
+        std::vector<std::string> warnings;
+        if (s.count == 0) {
+            warnings.emplace_back("no cluster predicted: precision and recall are 0");
+        }
+        if (s.gt_count == 0) {
+            warnings.emplace_back("no ground-truth fruit: recall and recovery are undefined");
+        }
+        j["warnings"] = warnings;
         out << j.dump(1) << '\n';
     }
     return out.str();

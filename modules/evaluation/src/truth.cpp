@@ -48,7 +48,16 @@ Truth parse_truth(std::string_view json_text) {
                             ? whole(j.at("fruit_count"), "fruit_count", std::uint64_t{1} << 32)
                             : t.fruits.size();
     } catch (const nlohmann::json::exception& e) {
-        throw IoError("not a ground-truth file (" + std::string(e.what()) + ")");
+        // "[json.exception.out_of_range.403] key 'fruits' not found" -> "key 'fruits' not found"
+        std::string what = e.what();
+        const std::size_t bracket = what.find("] ");
+        if (what.rfind("[json.exception.", 0) == 0 && bracket != std::string::npos) {
+            what.erase(0, bracket + 2);
+        }
+        throw IoError(
+            "not a ground-truth file: " + what +
+            R"( (expected {"fruits": [{"id": 1, "centre": [x, y, z], "radius": r}, ...]})" +
+            R"(, optionally "fruit_count": N}))");
     }
     return t;
 }

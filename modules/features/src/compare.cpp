@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <tuple>
 #include <vector>
 
@@ -38,8 +39,11 @@ DirectionStats direction(const Cloud& from, const Cloud& to, double tau) {
             d.insert(d.end(), local.begin(), local.end());
         }
     }
-    s.points = d.size();
-    if (d.empty()) {
+    for (const auto& p : from.points) {
+        s.points += is_finite(p);
+    }
+    if (d.empty()) {  // nothing to measure to (or from): distances undefined, not 0
+        s.mean = s.median = s.rms = s.max = std::numeric_limits<double>::quiet_NaN();
         return s;
     }
     std::sort(d.begin(), d.end());  // thread order must not change the sums
@@ -74,7 +78,56 @@ std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> voxels(const C
     return out;
 }
 
+/// The finite points' bounding box (min, max); min > max when there is none.
+std::pair<pcl::PointXYZ, pcl::PointXYZ> bounds(const Cloud& c) {
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    pcl::PointXYZ lo(kInf, kInf, kInf), hi(-kInf, -kInf, -kInf);
+    for (const auto& p : c.points) {
+        if (is_finite(p)) {
+            lo = pcl::PointXYZ(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+            hi = pcl::PointXYZ(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+        }
+    }
+    return {lo, hi};
+}
+
+double box_overlap(const Cloud& a, const Cloud& b) {
+    const auto [alo, ahi] = bounds(a);
+    const auto [blo, bhi] = bounds(b);
+    double f = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double lo = std::max(alo.data[k], blo.data[k]);
+        const double hi = std::min(ahi.data[k], bhi.data[k]);
+        const double shorter =
+            std::min(double(ahi.data[k]) - alo.data[k], double(bhi.data[k]) - blo.data[k]);
+        if (!(hi >= lo)) {
+            return 0;  // disjoint on this axis, or a cloud without points
+        }
+        f *= shorter > 0 ? (hi - lo) / shorter : 1.0;
+    }
+    return f;
+}
+
 }  // namespace
+
+std::vector<std::string> compare_warnings(const CompareResult& r, const CompareParams& params) {
+    std::vector<std::string> w;
+    if (r.a_to_b.points == 0 || r.b_to_a.points == 0) {
+        w.push_back(std::string(r.a_to_b.points == 0 ? "A" : "B") +
+                    " has no finite point: distances are undefined (null), scores 0");
+        return w;
+    }
+    if (r.box_overlap < 0.25) {
+        w.push_back("the clouds barely overlap (their bounding boxes share " +
+                    format_number(std::round(r.box_overlap * 1000) / 10) +
+                    " % of the smaller one): are they in one frame? (pc_transform --nerfstudio)");
+    } else if (r.fscore < 0.01) {
+        w.push_back("almost no point lies within tau = " + format_number(params.tau) +
+                    " of the other cloud (F-score " + format_number(r.fscore) +
+                    "): is tau in the clouds' units, and are they in one frame?");
+    }
+    return w;
+}
 
 void CompareParams::validate() const {
     if (!(tau > 0) || !std::isfinite(tau)) {
@@ -95,6 +148,7 @@ CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& param
     r.recall = r.b_to_a.within_tau;
     r.fscore =
         r.precision + r.recall > 0 ? 2 * r.precision * r.recall / (r.precision + r.recall) : 0.0;
+    r.box_overlap = box_overlap(a, b);
     const auto va = voxels(a, params.voxel), vb = voxels(b, params.voxel);
     std::vector<std::tuple<std::int64_t, std::int64_t, std::int64_t>> shared;
     std::set_intersection(va.begin(), va.end(), vb.begin(), vb.end(), std::back_inserter(shared));

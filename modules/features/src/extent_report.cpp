@@ -79,7 +79,24 @@ std::string csv_line(const std::string& name, const std::string& label, const Ex
 
 }  // namespace
 
-std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat format, bool per_label) {
+std::vector<std::string> extent_warnings(const ExtentRow& row) {
+    if (!row.error.empty()) {
+        return {};
+    }
+    if (row.whole.points == 0) {
+        return {"no finite point to measure"};
+    }
+    if (row.whole.degenerate) {
+        return {"no 3D hull (" + std::to_string(row.whole.points) +
+                " points, fewer than 4 or all in one plane): hull volume and area are 0"};
+    }
+    return {};
+}
+
+std::string extent_report(const std::vector<ExtentRow>& rows,
+                          ExtentFormat format,
+                          bool per_label,
+                          const nlohmann::ordered_json& header) {
     std::ostringstream out;
     if (format == ExtentFormat::kCsv) {
         out << "name,label,points,centroid_x,centroid_y,centroid_z,min_x,min_y,min_z,max_x,max_"
@@ -87,6 +104,10 @@ std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat forma
                "max_z,aabb_volume,hull_volume,hull_area,mean_radius,max_radius,"
                "equivalent_diameter,degenerate\n";
         for (const auto& r : rows) {
+            if (!r.error.empty()) {
+                out << r.name << ",error" << std::string(17, ',') << '\n';
+                continue;
+            }
             out << csv_line(r.name, "all", r.whole);
             for (const auto& c : r.clusters) {
                 out << csv_line(r.name, std::to_string(c.label), c.extent);
@@ -100,6 +121,14 @@ std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat forma
             << "\n| --- | ---: | ---: | ---: | ---: | ---: |"
             << (per_label ? " ---: | ---: | ---: |" : "") << '\n';
         for (const auto& r : rows) {
+            if (!r.error.empty()) {
+                out << "| " << r.name << " | error: see stderr |";
+                for (int c = 0; c < (per_label ? 7 : 4); ++c) {
+                    out << "  |";
+                }
+                out << '\n';
+                continue;
+            }
             const Extent& e = r.whole;
             out << "| " << r.name << " | " << e.points << " | " << g6(e.hull_volume) << " | "
                 << g6(e.mean_radius) << " | " << g6(e.max_radius) << " | " << g6(e.aabb_volume)
@@ -121,6 +150,11 @@ std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat forma
             ordered_json j;
             j["name"] = r.name;
             j["input"] = r.input;
+            if (!r.error.empty()) {
+                j["error"] = r.error;
+                clouds.push_back(j);
+                continue;
+            }
             j.update(extent_json(r.whole));
             if (per_label) {
                 ordered_json cl = ordered_json::array();
@@ -132,9 +166,12 @@ std::string extent_report(const std::vector<ExtentRow>& rows, ExtentFormat forma
                 j["cluster_summary"] = summary_json(r.clusters);
                 j["clusters"] = cl;
             }
+            j["warnings"] = extent_warnings(r);
             clouds.push_back(j);
         }
-        out << ordered_json{{"clouds", clouds}}.dump(1) << '\n';
+        ordered_json report = header.is_object() ? header : ordered_json::object();
+        report["clouds"] = clouds;
+        out << report.dump(1) << '\n';
     }
     return out.str();
 }

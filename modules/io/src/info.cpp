@@ -1,6 +1,7 @@
 #include <cmath>
 #include <limits>
 
+#include <pc/core/stats.h>
 #include <pc/io/info.h>
 
 namespace pc::io {
@@ -20,7 +21,7 @@ std::string colour_fields(const Blob& blob) {
     return "";
 }
 
-CloudInfo describe(const Blob& blob) {
+CloudInfo describe(const Blob& blob, bool percentiles) {
     CloudInfo info;
     const auto& c = blob.cloud;
     info.points = blob.size();
@@ -32,6 +33,7 @@ CloudInfo describe(const Blob& blob) {
     info.colour = colour_fields(blob);
     const std::size_t n = blob.size();
     const std::uint8_t* data = c.data.data();
+    std::vector<double> values;  // one element's values, for its percentiles
     for (const auto& f : c.fields) {
         FieldInfo fi;
         fi.name = f.name;
@@ -44,21 +46,36 @@ CloudInfo describe(const Blob& blob) {
                 ElementStats s;
                 s.min = std::numeric_limits<double>::infinity();
                 s.max = -s.min;
-                double sum = 0;
+                double sum = 0, mean = 0, m2 = 0;  // Welford for m2: no cancellation on offsets
                 const std::uint8_t* p = data + f.offset + e * fi.size;
+                if (percentiles) {
+                    values.resize(n);
+                }
                 for (std::size_t i = 0; i < n; ++i, p += c.point_step) {
                     const double v = value_as_double(p, f.datatype);
+                    if (percentiles) {
+                        values[i] = v;
+                    }
                     if (std::isfinite(v)) {
                         s.min = std::min(s.min, v);
                         s.max = std::max(s.max, v);
-                        sum += v;
                         ++s.finite;
+                        sum += v;
+                        const double d = v - mean;
+                        mean += d / static_cast<double>(s.finite);
+                        m2 += d * (v - mean);
                     }
                 }
                 if (s.finite == 0) {
                     s.min = s.max = std::nan("");
                 }
                 s.mean = s.finite ? sum / static_cast<double>(s.finite) : std::nan("");
+                s.stddev = s.finite ? std::sqrt(m2 / static_cast<double>(s.finite)) : std::nan("");
+                if (percentiles && s.finite) {
+                    s.p10 = percentile_of_finite(values, 10);
+                    s.median = percentile_of_finite(values, 50);
+                    s.p90 = percentile_of_finite(values, 90);
+                }
                 fi.stats.push_back(s);
             }
         }

@@ -41,11 +41,35 @@ TEST(Compare, HollowShellCoversLittleOfASolidBall) {
     EXPECT_EQ(compare(hollow, solid, {.tau = 0.1, .voxel = 0.1}).precision, 1.0);
 }
 
-TEST(Compare, EmptySideGivesZeroStatistics) {
+TEST(Compare, EmptySideGivesUndefinedDistancesAndZeroScores) {
     const CompareResult r = compare(Cloud{}, test::uniform(10, 1, 1), {});
     EXPECT_EQ(r.a_to_b.points, 0u);
+    EXPECT_EQ(r.b_to_a.points, 10u);  // B's points are there, with nothing to measure to
+    EXPECT_TRUE(std::isnan(r.b_to_a.mean));
     EXPECT_EQ(r.recall, 0.0);
     EXPECT_EQ(r.fscore, 0.0);
+    ASSERT_EQ(compare_warnings(r, {}).size(), 1u);
+    EXPECT_EQ(compare_warnings(r, {})[0].rfind("A has no finite point", 0), 0u);
+}
+
+TEST(Compare, WarnsWhenTheCloudsAreInDifferentFrames) {
+    // The same cube twice: once where it is, once moved by 3 sides (a frame that does not match).
+    const Cloud a = test::uniform(500, 1, 1);
+    Cloud b = a;
+    EXPECT_DOUBLE_EQ(compare(a, b, {}).box_overlap, 1.0);
+    EXPECT_TRUE(compare_warnings(compare(a, b, {}), {}).empty());
+    for (auto& p : b.points) {
+        p.x += 3;
+    }
+    const CompareResult moved = compare(a, b, {});
+    EXPECT_EQ(moved.box_overlap, 0.0);
+    ASSERT_EQ(compare_warnings(moved, {}).size(), 1u);
+    EXPECT_NE(compare_warnings(moved, {})[0].find("one frame"), std::string::npos);
+    // Half a side along x: the boxes share about half of the smaller one.
+    for (auto& p : b.points) {
+        p.x -= 2.5f;
+    }
+    EXPECT_NEAR(compare(a, b, {}).box_overlap, 0.5, 0.02);
 }
 
 TEST(Compare, RejectsNonPositiveTau) {

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <pc/io/read.h>
@@ -38,6 +39,12 @@ public:
     /// Prints `<tool>: warning: <message>` on stderr unless -q was given: a valid input whose
     /// result is doubtful (a filter that dropped nearly everything, a count of 0).
     void warn(const std::string& message) const;
+    /// Prints `<tool>: error: <message>` on stderr and makes the run exit 1 when the body returns:
+    /// one input of several failed, the others go on (report_each).
+    void fail(const std::string& message);
+    /// Every option of the tool as used (the preset first, then each option's value as text).
+    [[nodiscard]] std::vector<std::pair<std::string, std::string>> parameters() const;
+    [[nodiscard]] const std::string& tool() const { return tool_; }
     [[nodiscard]] bool verbose() const { return verbose_; }
     [[nodiscard]] const std::string& input_name() const { return input_name_; }
     /// The format the last read() recognised ("pcd binary", "ply ascii", ...).
@@ -48,13 +55,16 @@ private:
     void write_bytes(const std::function<void(io::ByteSink&)>& producer);
 
     std::string tool_;
+    std::function<std::vector<std::pair<std::string, std::string>>()> parameters_;
     std::string input_ = "-", output_ = "-", input_name_;
     std::string encoding_ = "binary", container_ = "auto", input_format_;
     std::uint64_t max_input_bytes_ = io::kDefaultMaxInputBytes;
-    bool verbose_ = false, quiet_ = false, written_ = false;
+    bool verbose_ = false, quiet_ = false, written_ = false, failed_ = false;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
+/// The toolkit's version ("0.1.0"), as --version prints it and reports carry it.
+[[nodiscard]] const char* version();
 /// A real number for option `--option`; throws pc::InvalidArgument naming it.
 [[nodiscard]] double parse_double(const std::string& option, const std::string& text);
 /// "x,y,z" for option `--option`; throws pc::InvalidArgument naming it.
@@ -91,10 +101,13 @@ public:
     /// A switch without a value.
     void flag(const std::string& name, bool* field, const std::string& help);
     /// An option whose text is parsed by `parse` (which throws pc::InvalidArgument on bad text).
+    /// `show`, when given, says the value as used for reports (after a preset changed it);
+    /// without it, reports show the text given or the default text.
     void option(const std::string& name,
                 const std::string& default_text,
                 std::function<void(const std::string&)> parse,
-                const std::string& help);
+                const std::string& help,
+                std::function<std::string()> show = {});
     /// `--preset NAME`: `apply` runs before every explicitly given option, so flags override it.
     void presets(const std::vector<std::string>& names,
                  std::function<void(const std::string&)> apply);

@@ -1,6 +1,8 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include <pc/core/cloud.h>
 
@@ -16,8 +18,8 @@ struct CompareParams {
 
 /// Nearest-neighbour distances from every finite point of one cloud to the other.
 struct DirectionStats {
-    std::size_t points = 0;  ///< finite query points
-    double mean = 0, median = 0, rms = 0, max = 0;
+    std::size_t points = 0;                         ///< finite query points
+    double mean = 0, median = 0, rms = 0, max = 0;  ///< NaN when either side has no point
     double within_tau = 0;  ///< fraction of query points with distance <= tau
 };
 
@@ -30,11 +32,20 @@ struct CompareResult {
     std::size_t b_voxels = 0;       ///< voxels occupied by B
     std::size_t shared_voxels = 0;  ///< of those, also occupied by A
     double interior_coverage = 0;   ///< shared_voxels / b_voxels (0 when B is empty)
+    /// How much the bounding boxes share: the product over the axes of the overlap over the
+    /// shorter side (an axis where a cloud is flat counts 1 if it lies within); 0 if disjoint.
+    double box_overlap = 0;
 };
 
 /// Cloud-to-cloud comparison of A (reconstruction) against B (reference). Exact nearest
 /// neighbours (grid + k-d tree). Voxels are floor(p / voxel) on a grid anchored at the origin,
-/// shared by both clouds. Non-finite points are skipped. An empty side gives zero statistics.
+/// shared by both clouds. Non-finite points are skipped. An empty side gives undefined (NaN)
+/// distances and zero scores.
 [[nodiscard]] CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& params);
+
+/// What makes a comparison doubtful, in words: an empty side; clouds whose bounding boxes share
+/// under 25 % (different frames?); an F-score under 0.01 (tau in other units?).
+[[nodiscard]] std::vector<std::string> compare_warnings(const CompareResult& r,
+                                                        const CompareParams& params);
 
 }  // namespace pc::features

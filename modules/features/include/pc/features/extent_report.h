@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <pc/features/extent.h>
 
 namespace pc::features {
@@ -13,16 +15,22 @@ struct ExtentRow {
     std::string name, input;
     Extent whole;
     std::vector<LabelledExtent> clusters;
+    std::string error;  ///< the input could not be measured (unreadable, no label): this instead
 };
+
+/// What makes a row doubtful: no point to measure, or no 3D hull (hull volume 0).
+[[nodiscard]] std::vector<std::string> extent_warnings(const ExtentRow& row);
 
 enum class ExtentFormat { kJson, kCsv, kMarkdown };
 
-/// The report of pc_extent (docs/tools/pc_extent.md): JSON {"clouds": [...]} with every field of
-/// the extent (null for what cannot be computed) and, with `per_label`, the clusters and their
-/// summary (median, quartiles); CSV with a row for each cloud ("all") and each cluster; or a
-/// markdown table in the paper's Table 3 layout (per label: cluster count and medians).
+/// The report of pc_extent (docs/tools/pc_extent.md): JSON `header` (tool, version, parameters)
+/// and "clouds": [...] with every field of the extent (null for what cannot be computed), its
+/// `warnings` and, with `per_label`, the clusters and their summary (median, quartiles); CSV with
+/// a row for each cloud ("all") and each cluster; or a markdown table in the paper's Table 3
+/// layout (per label: cluster count and medians). A row with an error says only that.
 [[nodiscard]] std::string extent_report(const std::vector<ExtentRow>& rows,
                                         ExtentFormat format,
-                                        bool per_label);
+                                        bool per_label,
+                                        const nlohmann::ordered_json& header = {});
 
 }  // namespace pc::features

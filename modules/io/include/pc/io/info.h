@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,7 +13,10 @@ namespace pc::io {
 /// Statistics of one element of a field over all points (non-finite values excluded).
 struct ElementStats {
     double min = 0, max = 0, mean = 0;
-    std::uint64_t finite = 0;  ///< values that entered min/max/mean
+    double stddev = 0;         ///< population standard deviation (numpy.std, PDAL's stddev)
+    std::uint64_t finite = 0;  ///< values that entered the statistics
+    /// numpy.percentile's 10th, 50th, 90th; NaN unless describe() was asked for percentiles.
+    double p10 = std::nan(""), median = std::nan(""), p90 = std::nan("");
 };
 
 struct FieldInfo {
@@ -37,8 +41,9 @@ struct CloudInfo {
     std::array<float, 7> viewpoint{};
 };
 
-/// Summarises a cloud. O(points x elements); no allocation per point.
-[[nodiscard]] CloudInfo describe(const Blob& blob);
+/// Summarises a cloud. O(points x elements); no allocation per point unless `percentiles`
+/// (one array of the points' values, an element at a time).
+[[nodiscard]] CloudInfo describe(const Blob& blob, bool percentiles = false);
 
 /// The colour fields present, as in CloudInfo::colour ("" when the cloud has no colour).
 [[nodiscard]] std::string colour_fields(const Blob& blob);

@@ -1,0 +1,181 @@
+// Reports that say what they did, for many inputs at once (issue 21): every report carries its
+// input, tool, version and parameters; a failing input gets an error row and exit 1 while the
+// others are reported; the formats (JSON, JSON Lines, CSV, markdown, text, plain) agree.
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "support/corpus.h"
+#include "support/run_tool.h"
+
+namespace pc::test {
+namespace {
+
+const std::string kSamples = std::string(PC_SAMPLE_CLOUDS_DIR) + "/";
+
+/// Three points labelled 1, 2, 0 (noise): two clusters.
+std::string labelled() {
+    return pcd_header("x y z label", "4 4 4 4", "F F F U", "1 1 1 1", "3", "3", "ascii") +
+           "0 0 0 1\n1 0 0 2\n2 0 0 0\n";
+}
+
+std::vector<nlohmann::json> json_lines(const std::string& text) {
+    std::vector<nlohmann::json> rows;
+    std::stringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+        rows.push_back(nlohmann::json::parse(line));
+    }
+    return rows;
+}
+
+TEST(Reports, CountCarriesInputToolVersionAndEveryParameter) {
+    const RunResult r = run_shell("@pc_count --min-cluster-size 1 --gt 4", labelled());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::ordered_json::parse(r.out);
+    EXPECT_EQ(j["input"], "<stdin>");
+    EXPECT_EQ(j["tool"], "pc_count");
+    EXPECT_EQ(j["version"], run_shell("@pc_count --version").out.substr(9, 5));
+    EXPECT_EQ(j["parameters"]["min-cluster-size"], 1);
+    EXPECT_EQ(j["parameters"]["gt"], 4);
+    EXPECT_FALSE(j["parameters"].contains("csv"));  // the format flags change no number
+    EXPECT_EQ(j["count_error"], -2.0);
+    EXPECT_EQ(j.items().begin().key(), "input");
+    EXPECT_EQ((--j.end()).key(), "warnings");
+}
+
+TEST(Reports, FruitcountReportsEpsAndRulesAsUsedPerStep) {
+    const RunResult r =
+        run_shell("@pc_fruitcount --preset paper-sparse --jsonl " + kSamples + "fruit_small.ply");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["parameters"]["preset"], "paper-sparse");
+    // The preset's fixed eps, not the default's text, and each step's points in and out.
+    EXPECT_EQ(j["parameters"]["eps"], 0.03);
+    ASSERT_TRUE(j["steps"].is_array());
+    std::size_t in = j["steps"][0]["points_in"];
+    EXPECT_EQ(in, 5640u);
+    for (const auto& step : j["steps"]) {
+        EXPECT_EQ(step["points_in"], in) << step;  // each step gets what the last passed on
+        in = step["points_out"];
+    }
+}
+
+TEST(Reports, ManyInputsOneRowEachAndAFailureDoesNotStopTheOthers) {
+    TempDir dir;
+    spit(dir.file("a.pcd"), labelled());
+    spit(dir.file("bad.pcd"), "VERSION .7\nFIELDS x\n");
+    const std::string inputs =
+        dir.file("a.pcd") + " " + dir.file("bad.pcd") + " " + dir.file("a.pcd");
+    const RunResult r = run_shell("@pc_count -q --jsonl " + inputs);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(line_count(r.err), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("pc_count: error: " + dir.file("bad.pcd") + ": ", 0), 0u) << r.err;
+    const auto rows = json_lines(r.out);
+    ASSERT_EQ(rows.size(), 3u) << r.out;
+    EXPECT_EQ(rows[0]["count"], 2);
+    EXPECT_EQ(rows[1]["input"], dir.file("bad.pcd"));
+    EXPECT_TRUE(rows[1]["error"].is_string());
+    EXPECT_EQ(rows[2]["count"], 2);
+
+    // JSON: an array of the same rows; plain: one count a line, empty for the failure.
+    const auto all = nlohmann::json::parse(run_shell("@pc_count " + inputs).out);
+    ASSERT_TRUE(all.is_array());
+    EXPECT_EQ(all.size(), 3u);
+    EXPECT_EQ(run_shell("@pc_count --plain " + inputs).out, "2\n\n2\n");
+
+    // CSV: a header and a row each; the failed row's error lands in its own column.
+    const RunResult csv = run_shell("@pc_count --csv " + inputs);
+    ASSERT_EQ(line_count(csv.out), 4) << csv.out;
+    EXPECT_EQ(csv.out.rfind("input,tool,version,parameters.preset,", 0), 0u) << csv.out;
+    EXPECT_NE(csv.out.find(",error"), std::string::npos);
+
+    // Every input bad: only the error lines, no report.
+    const RunResult none =
+        run_shell("@pc_count -q " + dir.file("bad.pcd") + " " + dir.file("x.pcd"));
+    EXPECT_EQ(none.code, 1);
+    EXPECT_EQ(none.out, "");
+    EXPECT_EQ(line_count(none.err), 2);
+}
+
+TEST(Reports, MarkdownAndTextLeaveNothingOut) {
+    TempDir dir;
+    spit(dir.file("a.pcd"), labelled());
+    const RunResult md = run_shell("@pc_count --markdown " + dir.file("a.pcd"));
+    ASSERT_EQ(md.code, 0) << md.err;
+    EXPECT_EQ(line_count(md.out), 3);
+    EXPECT_EQ(md.out.rfind("| input | count | noise_points |", 0), 0u) << md.out;
+    const RunResult text = run_shell("@pc_count --text " + dir.file("a.pcd"));
+    EXPECT_NE(text.out.find("\ncount 2\n"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("\nparameters.min-cluster-size 1\n"), std::string::npos);
+    EXPECT_EQ(run_shell("@pc_count --csv --markdown " + dir.file("a.pcd")).code, 2);
+}
+
+TEST(Reports, FruitcountWritesOneLabelledCloudAnInputByStem) {
+    TempDir dir;
+    const std::string one = kSamples + "fruit_small.ply";
+    const std::string two = kSamples + "plum_bunches_explicit.pcd";
+    const RunResult r = run_shell("@pc_fruitcount --plain " + one + " " + two + " --cloud " +
+                                  dir.path + "/{stem}_labelled.pcd");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(line_count(r.out), 2);
+    for (const char* stem : {"fruit_small", "plum_bunches_explicit"}) {
+        const RunResult count =
+            run_shell("@pc_count --plain " + dir.path + "/" + stem + "_labelled.pcd");
+        EXPECT_EQ(count.code, 0) << count.err;
+        EXPECT_NE(r.out.find(count.out), std::string::npos) << stem;
+    }
+    // Several inputs into one --cloud file would overwrite it: refused before any work.
+    const RunResult clash =
+        run_shell("@pc_fruitcount " + one + " " + two + " --cloud " + dir.file("x.pcd"));
+    EXPECT_EQ(clash.code, 2);
+    EXPECT_NE(clash.err.find("{stem}"), std::string::npos);
+}
+
+TEST(Reports, ExtentGoesOnPastAFailingInput) {
+    TempDir dir;
+    const RunResult r = run_shell("@pc_extent " + kSamples + "fruit_small.ply " +
+                                  dir.file("missing.pcd") + " --markdown");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(line_count(r.out), 4) << r.out;
+    EXPECT_NE(r.out.find("| missing | error: see stderr |"), std::string::npos) << r.out;
+    const auto j = nlohmann::json::parse(
+        run_shell("@pc_extent " + kSamples + "fruit_small.ply " + dir.file("missing.pcd")).out);
+    EXPECT_EQ(j["tool"], "pc_extent");
+    EXPECT_TRUE(j["clouds"][1].contains("error"));
+    EXPECT_TRUE(j["clouds"][0]["warnings"].empty());
+}
+
+TEST(Reports, CompareWarnsAboutCloudsInDifferentFramesAndEmptySides) {
+    const std::string sample = kSamples + "fruit_small.ply";
+    const RunResult moved = run_shell("@pc_transform --translate 5,0,0 -i " + sample +
+                                      " | @pc_compare " + sample + " -");
+    ASSERT_EQ(moved.code, 0) << moved.err;
+    EXPECT_NE(moved.err.find("warning: the clouds barely overlap"), std::string::npos) << moved.err;
+    const auto j = nlohmann::json::parse(moved.out);
+    EXPECT_EQ(j["warnings"].size(), 1u);
+    EXPECT_EQ(j["box_overlap"], 0.0);
+    // An empty A: B's points are still counted; its distances are undefined, not 0.
+    const RunResult empty = run_shell("@pc_compare - " + sample, xyz_header("0", "binary"));
+    ASSERT_EQ(empty.code, 0) << empty.err;
+    const auto e = nlohmann::json::parse(empty.out);
+    EXPECT_EQ(e["b_to_a"]["points"], 5640);
+    EXPECT_TRUE(e["b_to_a"]["mean"].is_null());
+    EXPECT_NE(empty.err.find("A has no finite point"), std::string::npos);
+}
+
+TEST(Reports, EvalTruthWithAWrongKeySaysWhatWasExpected) {
+    TempDir dir;
+    spit(dir.file("truth.json"), R"({"fruit": []})");
+    const RunResult r =
+        run_shell("@pc_eval --truth " + dir.file("truth.json") + " --match centroid", labelled());
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(line_count(r.err), 1);
+    EXPECT_EQ(r.err.find("json.exception"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("key 'fruits' not found (expected {\"fruits\": [{\"id\""),
+              std::string::npos)
+        << r.err;
+}
+
+}  // namespace
+}  // namespace pc::test
