@@ -1,6 +1,8 @@
 // pc_transform: apply an affine transform (matrix, scale, rotation, translation, nerfstudio's
 // dataparser transform), then optionally centre and normalise. Normals rotate with the points.
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,8 +18,9 @@ namespace {
 
 std::string slurp_file(const std::string& path, const std::string& option) {
     std::ifstream f(path, std::ios::binary);
-    if (!f) {
-        throw pc::InvalidArgument("--" + option + ": cannot read '" + path + "'");
+    if (!f) {  // a file that is not there is an I/O error (exit 1), as a missing -i is
+        throw pc::IoError(path + ": cannot read the --" + option +
+                          " file: " + std::strerror(errno));
     }
     std::stringstream ss;
     ss << f.rdbuf();

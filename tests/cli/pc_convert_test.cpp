@@ -42,6 +42,28 @@ TEST(PcConvert, OutputExtensionPlyWritesPly) {
     EXPECT_EQ(slurp(dir.file("a.PLY")).rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
 }
 
+TEST(PcConvert, TextOutByExtensionAndOtherFormatsRefusedBeforeAnyWork) {
+    TempDir dir;
+    const RunResult r = run_shell("@pc_convert -i " + kSample + " -o " + dir.file("a.xyz"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(slurp(dir.file("a.xyz")).rfind("//X Y Z R G B\n", 0), 0u);
+    // A float cloud read back: the same cloud, bit for bit (the sample PLY's doubles would come
+    // back as floats: text has no types).
+    const std::string floats = std::string(PC_SAMPLE_CLOUDS_DIR) + "/plum_bunches_explicit.pcd";
+    ASSERT_EQ(run_shell("@pc_convert -i " + floats + " -o " + dir.file("b.xyz")).code, 0);
+    EXPECT_TRUE(run_shell("@pc_convert -i " + dir.file("b.xyz")).out ==
+                run_shell("@pc_convert -i " + floats).out);
+    // PCD bytes under a .las name would be a file that every LAS reader refuses: say so instead.
+    const RunResult las = run_shell("@pc_convert -i " + kSample + " -o " + dir.file("a.las"));
+    EXPECT_EQ(las.code, 2);
+    EXPECT_NE(las.err.find("not .las"), std::string::npos) << las.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("a.las")));
+    EXPECT_EQ(run_shell("@pc_convert -i " + kSample + " --to pcd -o " + dir.file("a.las")).code, 0);
+    EXPECT_EQ(slurp(dir.file("a.las")).rfind("# .PCD", 0), 0u);
+    // --cloud follows the same rule, checked before the chain runs.
+    EXPECT_EQ(run_shell("@pc_fruitcount -i " + kSample + " --cloud " + dir.file("c.laz")).code, 2);
+}
+
 TEST(PcConvert, CompressedPlyIsAUsageError) {
     const RunResult r = run_shell("@pc_convert -i " + kSample + " --to ply --format compressed");
     EXPECT_EQ(r.code, 2);

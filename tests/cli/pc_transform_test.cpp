@@ -88,7 +88,13 @@ TEST(PcTransform, BadArgumentsAreUsageErrors) {
     EXPECT_EQ(run_shell("@pc_transform --rotate 0,0,0,90 -i " + kSample).code, 2);
     EXPECT_EQ(run_shell("@pc_transform --matrix 1,2,3 -i " + kSample).code, 2);
     EXPECT_EQ(run_shell("@pc_transform --normalize unit -i " + kSample).code, 2);
-    EXPECT_EQ(run_shell("@pc_transform --nerfstudio /nonexistent.json -i " + kSample).code, 2);
+    // A file that is not there is an I/O error, as a missing -i is (exit 1, not 2).
+    const RunResult missing =
+        run_shell("@pc_transform --nerfstudio /nonexistent.json -i " + kSample);
+    EXPECT_EQ(missing.code, 1);
+    EXPECT_EQ(missing.err,
+              "pc_transform: error: /nonexistent.json: cannot read the --nerfstudio "
+              "file: No such file or directory\n");
 }
 
 TEST(Messages, SayWhatWasExpectedAndWhatToDo) {

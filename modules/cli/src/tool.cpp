@@ -28,6 +28,7 @@
 #include <pc/core/error.h>
 #include <pc/io/pcd.h>
 #include <pc/io/ply.h>
+#include <pc/io/text.h>
 
 namespace po = boost::program_options;
 
@@ -188,14 +189,59 @@ std::array<double, 3> parse_triple(const std::string& option, const std::string&
     return out;
 }
 
+Container container_for(const std::string& path, const std::string& to) {
+    if (to == "pcd" || to == "ply" || to == "xyz") {
+        return to == "pcd" ? Container::kPcd : to == "ply" ? Container::kPly : Container::kText;
+    }
+    if (to != "auto") {
+        throw InvalidArgument("--to must be pcd, ply, xyz or auto, got '" + to + "'");
+    }
+    if (ends_with(path, ".ply")) {
+        return Container::kPly;
+    }
+    for (const char* ext : {".xyz", ".txt", ".asc"}) {
+        if (ends_with(path, ext)) {
+            return Container::kText;
+        }
+    }
+    for (const char* ext : {".las", ".laz", ".e57", ".obj", ".stl", ".off", ".vtk", ".ptx", ".pts",
+                            ".csv", ".bin", ".npy", ".npz", ".h5", ".splat", ".glb", ".gltf"}) {
+        if (ends_with(path, ext)) {
+            throw InvalidArgument(path +
+                                  ": this toolkit writes PCD, PLY and XYZ text (.pcd, .ply, "
+                                  ".xyz), not " +
+                                  std::string(ext) +
+                                  "; convert the PCD with another tool (PDAL: pdal translate), "
+                                  "or give --to pcd to write PCD under this name");
+        }
+    }
+    return Container::kPcd;
+}
+
+namespace {
+
+void write_container(
+    Container c, io::PcdEncoding pcd, bool binary, const io::Blob& blob, io::ByteSink& sink) {
+    switch (c) {
+        case Container::kPly:
+            io::write_ply(blob, binary, sink);
+            break;
+        case Container::kText:
+            io::write_text(blob, sink);
+            break;
+        case Container::kPcd:
+            io::write_pcd(blob, pcd, sink);
+            break;
+    }
+}
+
+}  // namespace
+
 void write_cloud_file(const std::string& path, const io::Blob& blob) {
+    const Container c = container_for(path);
     AtomicFile file(path);
     io::FdSink sink(file.fd(), path);
-    if (ends_with(path, ".ply")) {
-        io::write_ply(blob, true, sink);
-    } else {
-        io::write_pcd(blob, io::PcdEncoding::kBinary, sink);
-    }
+    write_container(c, io::PcdEncoding::kBinary, true, blob, sink);
     file.commit();
 }
 
@@ -265,20 +311,12 @@ void Streams::write_bytes(const std::function<void(io::ByteSink&)>& producer) {
 }
 
 void Streams::write(const io::Blob& blob) {
-    const bool ply = container_ == "ply" || (container_ == "auto" && ends_with(output_, ".ply"));
-    if (ply && encoding_ == "compressed") {
-        throw InvalidArgument("--format compressed exists for PCD only, not PLY");
-    }
-    write_bytes([&](io::ByteSink& sink) {
-        if (ply) {
-            io::write_ply(blob, encoding_ != "ascii", sink);
-        } else {
-            const io::PcdEncoding e = encoding_ == "ascii"    ? io::PcdEncoding::kAscii
-                                      : encoding_ == "binary" ? io::PcdEncoding::kBinary
-                                                              : io::PcdEncoding::kBinaryCompressed;
-            io::write_pcd(blob, e, sink);
-        }
-    });
+    const Container c = container_for(output_, container_);
+    const io::PcdEncoding e = encoding_ == "ascii"    ? io::PcdEncoding::kAscii
+                              : encoding_ == "binary" ? io::PcdEncoding::kBinary
+                                                      : io::PcdEncoding::kBinaryCompressed;
+    write_bytes(
+        [&](io::ByteSink& sink) { write_container(c, e, encoding_ != "ascii", blob, sink); });
 }
 
 void Streams::write_text(std::string_view text) {
@@ -336,7 +374,9 @@ po::options_description Tool::Impl::common_options(Streams& io) const {
                              po::value<std::string>(&io.encoding_)->default_value("binary"),
                              "PCD encoding: binary, ascii or compressed (PLY: binary or ascii)")(
             "to", po::value<std::string>(&io.container_)->default_value("auto"),
-            "output container: pcd, ply, or auto (ply when -o ends in .ply)");
+            "output container: pcd, ply, xyz (text: a //X Y Z ... line, then a point a line), or "
+            "auto (by -o's extension: .ply PLY, .xyz .txt .asc text, else PCD; .las and other "
+            "formats refused)");
     }
     return common;
 }
@@ -376,10 +416,11 @@ void Tool::Impl::check_output(const Streams& io) const {
             throw InvalidArgument("--format must be binary, ascii or compressed, got '" +
                                   io.encoding_ + "'");
         }
-        if (io.container_ != "auto" && io.container_ != "pcd" && io.container_ != "ply") {
-            throw InvalidArgument("--to must be pcd, ply or auto, got '" + io.container_ + "'");
+        const Container c = container_for(io.output_, io.container_);  // before any work
+        if (c != Container::kPcd && io.encoding_ == "compressed") {
+            throw InvalidArgument("--format compressed exists for PCD only");
         }
-        if (io.output_ == "-" && io.encoding_ != "ascii" && ::isatty(1)) {
+        if (io.output_ == "-" && io.encoding_ != "ascii" && c != Container::kText && ::isatty(1)) {
             throw InvalidArgument(
                 "refusing to write a binary cloud to a terminal; use -o FILE, "
                 "a pipe, or --format ascii");

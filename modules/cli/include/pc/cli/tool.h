@@ -70,8 +70,15 @@ private:
 /// "x,y,z" for option `--option`; throws pc::InvalidArgument naming it.
 [[nodiscard]] std::array<double, 3> parse_triple(const std::string& option,
                                                  const std::string& text);
-/// Writes a cloud to `path` (binary PCD, or binary PLY for a .ply name) through a temporary file
-/// renamed into place, so a failure never leaves a partial file.
+/// The cloud formats a tool writes.
+enum class Container { kPcd, kPly, kText };
+/// The container `--to` names (pcd, ply, xyz), or for `auto` the one `path`'s extension names:
+/// .ply PLY; .xyz, .txt, .asc XYZ text; anything else PCD, except extensions of formats this
+/// toolkit does not write (.las, .laz, .e57, .obj, .csv, ...): pc::InvalidArgument saying so,
+/// rather than PCD bytes under a name that promises something else.
+[[nodiscard]] Container container_for(const std::string& path, const std::string& to = "auto");
+/// Writes a cloud to `path` (binary PCD, binary PLY or XYZ text as container_for says) through a
+/// temporary file renamed into place, so a failure never leaves a partial file.
 void write_cloud_file(const std::string& path, const io::Blob& blob);
 /// Writes text to `path` the same way (temporary file, fsync, rename).
 void write_text_file(const std::string& path, std::string_view text);
