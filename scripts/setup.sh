@@ -8,6 +8,7 @@ packages=(
     libpcl-dev libflann-dev libeigen3-dev libqhull-dev
     libboost-program-options-dev libgtest-dev libgmock-dev
     nlohmann-json3-dev libopencv-dev
+    parallel
 )
 
 source "$(dirname "$0")/lib_packages.sh"

@@ -132,6 +132,26 @@ TEST(Reports, FruitcountWritesOneLabelledCloudAnInputByStem) {
     EXPECT_NE(clash.err.find("{stem}"), std::string::npos);
 }
 
+TEST(Reports, TheParallelRecipeGivesTheRowsOfOneProcess) {
+    // README's recipe for many trees on all cores (GNU parallel, installed by scripts/setup.sh):
+    // JSON Lines concatenate, --keep-order keeps the inputs' order.
+    const std::string clouds = kSamples + "fruit_small.ply " + kSamples +
+                               "plum_bunches_explicit.pcd " + kSamples + "apple_small_degraded.pcd";
+    const RunResult together = run_shell("@pc_fruitcount -q --jsonl " + clouds);
+    ASSERT_EQ(together.code, 0) << together.err;
+    const RunResult parallel =
+        run_shell("parallel -j2 --keep-order @pc_fruitcount -q --jsonl {} ::: " + clouds);
+    ASSERT_EQ(parallel.code, 0) << parallel.err;
+    const auto a = json_lines(together.out), b = json_lines(parallel.out);
+    ASSERT_EQ(a.size(), 3u);
+    ASSERT_EQ(b.size(), 3u);
+    for (std::size_t k = 0; k < 3; ++k) {
+        EXPECT_EQ(a[k]["input"], b[k]["input"]);
+        EXPECT_EQ(a[k]["count"], b[k]["count"]);
+        EXPECT_EQ(a[k]["steps"], b[k]["steps"]);
+    }
+}
+
 TEST(Reports, ExtentGoesOnPastAFailingInput) {
     TempDir dir;
     const RunResult r = run_shell("@pc_extent " + kSamples + "fruit_small.ply " +

@@ -110,6 +110,16 @@ Step apply_crop(io::Blob in, const filters::CropParams& p) {
                        "is the box in the cloud's units and frame?");
 }
 
+Step apply_range(io::Blob in, const filters::RangeFilterParams& p) {
+    const auto kept = filters::range_filter(in, p);
+    std::string note = kept_note("range", kept.size(), in.size());
+    const std::size_t n = in.size();
+    io::keep_points(in, kept);
+    return finish_step(std::move(in), std::move(note), "range", n,
+                       "are the limits in the field's units? (pc_info --stats shows its "
+                       "percentiles)");
+}
+
 Step apply_voxel(io::Blob in, const filters::VoxelParams& p) {
     const filters::VoxelResult v = filters::voxel_downsample(io::XyzPoints(in).view(), p);
     return finish_step(io::aggregate(in, v.voxel, v.count),

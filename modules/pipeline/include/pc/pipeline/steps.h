@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include <pc/filters/range_filter.h>
 #include <pc/io/blob.h>
 #include <pc/pipeline/presets.h>
 #include <pc/segmentation/cluster_summary.h>
@@ -40,6 +41,8 @@ struct Step {
 /// `rule` says which. A cloud without colour passes through under `auto` (a word needs colour).
 [[nodiscard]] Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p);
 [[nodiscard]] Step apply_crop(io::Blob in, const filters::CropParams& p);
+/// Keeps the points whose fields pass the ranges (filters::range_filter, PDAL's rule).
+[[nodiscard]] Step apply_range(io::Blob in, const filters::RangeFilterParams& p);
 /// One point per occupied voxel (io::aggregate: centroid, mean colour, majority integer fields).
 [[nodiscard]] Step apply_voxel(io::Blob in, const filters::VoxelParams& p);
 
