@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
     bool eps_check = false;
-    std::string cloud_out;
+    std::string cloud_out, cloud_all;
 
     pc::cli::Tool tool("pc_fruitcount",
                        "count fruit: colour filter, crop, voxel, kNN outlier, DBSCAN, recursive "
@@ -111,6 +111,9 @@ int main(int argc, char** argv) {
                 "also write the labelled cloud to this file (binary PCD, or binary PLY for a .ply "
                 "name); {stem} becomes the input's name without extension (needed for several "
                 "inputs)");
+    tool.option("cloud-all", &cloud_all,
+                "also write the whole input with the chain's label on every point (0: removed by "
+                "a step, or noise), every field kept; {stem} as for --cloud");
     tool.epilog("\nSee docs/tools/pc_fruitcount.md for the presets and the steps.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         color.apply(chain);
@@ -126,17 +129,37 @@ int main(int argc, char** argv) {
         if (chain.voxel) {
             chain.voxel = voxel;
         }
-        if (inputs.size() > 1 && !cloud_out.empty() &&
-            cloud_out.find("{stem}") == std::string::npos) {
+        for (const auto& [option, path] :
+             {std::pair<std::string, const std::string*>{"cloud", &cloud_out},
+              std::pair<std::string, const std::string*>{"cloud-all", &cloud_all}}) {
+            if (path->empty()) {
+                continue;
+            }
+            if (inputs.size() > 1 && path->find("{stem}") == std::string::npos) {
+                throw pc::InvalidArgument("--" + option +
+                                          ": with several inputs, name the files with {stem} (for "
+                                          "example --" +
+                                          option + " out/{stem}.pcd)");
+            }
+            (void)pc::cli::container_for(*path);  // a .las name refused before any work
+        }
+        if (!cloud_all.empty() && chain.voxel) {
             throw pc::InvalidArgument(
-                "--cloud: with several inputs, name the files with {stem} "
-                "(for example --cloud out/{stem}_labelled.pcd)");
+                "--cloud-all: the whole cloud cannot be labelled after a "
+                "voxel step (its points are voxel centroids): drop --leaf");
         }
         report.each(io, inputs, [&](const std::string& path) {
             pc::io::Blob in = io.read(path);
             const std::size_t points = in.size();
-            const pl::ChainResult r =
-                pl::run_chain(std::move(in), chain, [&](const std::string& n) { io.note(n); });
+            const auto progress = [&](const std::string& n) { io.note(n); };
+            pl::MarkedChain marked;
+            if (cloud_all.empty()) {
+                marked.chain = pl::run_chain(std::move(in), chain, progress);
+            } else {
+                marked = pl::run_chain_marked(std::move(in), chain, progress);
+                pc::cli::write_cloud_file(cloud_path(cloud_all, path), marked.marked);
+            }
+            const pl::ChainResult& r = marked.chain;
             const auto summary = pl::summarize(r.labelled, chain.count_min_points);
             std::vector<std::string> warnings = r.warnings;
             for (const auto& w : pl::count_warnings(summary, points)) {

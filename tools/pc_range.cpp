@@ -31,17 +31,9 @@ int main(int argc, char** argv) {
         if (p.ranges.empty()) {
             throw pc::InvalidArgument("--limits: give at least one range, e.g. opacity[0.1:]");
         }
-        const pc::pipeline::Step step = [&] {
-            try {
-                return pc::pipeline::apply_range(io.read(), p);
-            } catch (const pc::IoError& e) {
-                const std::string what = e.what();
-                if (what.rfind(io.input_name() + ":", 0) == 0) {
-                    throw;  // a reader's error, which names the input already
-                }
-                throw pc::IoError(io.input_name() + ": " + what);  // no such field
-            }
-        }();
+        pc::io::Blob in = io.read();
+        const pc::pipeline::Step step = pc::cli::naming(
+            io.input_name(), [&] { return pc::pipeline::apply_range(std::move(in), p); });
         pc::tools::write_step(io, step);
     });
 }

@@ -16,6 +16,8 @@
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/filters/color_filter.h>
+#include <pc/filters/colorize.h>
 #include <pc/io/blob.h>
 #include <pc/io/points.h>
 #include <pc/search/spacing.h>
@@ -56,30 +58,7 @@ cam::View standard_view(
     return cam::look_at(centre + distance * dir, centre, up, width, height, fov);
 }
 
-/// A distinct colour per label (golden-ratio hues), grey for 0.
-cv::Vec3b label_colour(std::uint32_t label) {
-    if (label == 0) {
-        return {160, 160, 160};
-    }
-    const double h = std::fmod(label * 0.618033988749895, 1.0) * 180;
-    cv::Mat hsv(1, 1, CV_8UC3, cv::Scalar(h, 200, 230)), bgr;
-    cv::cvtColor(hsv, bgr, cv::COLOR_HSV2BGR);
-    return bgr.at<cv::Vec3b>(0, 0);
-}
-
-/// Values of any numeric field (COUNT 1) as doubles; pc::IoError naming it when absent.
-std::vector<double> field_values(const pc::io::Blob& b, const std::string& name) {
-    const pcl::PCLPointField* f = pc::io::find_field(b, name);
-    if (f == nullptr || f->count != 1) {
-        throw pc::IoError("no numeric field '" + name + "' to colour by");
-    }
-    std::vector<double> v(b.size());
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        v[i] = pc::io::value_as_double(b.cloud.data.data() + i * b.cloud.point_step + f->offset,
-                                       f->datatype);
-    }
-    return v;
-}
+cv::Vec3b bgr(const pc::filters::Rgb8& c) { return {c[2], c[1], c[0]}; }
 
 }  // namespace
 
@@ -189,51 +168,18 @@ int main(int argc, char** argv) {
                     };
                     colour[i] = {c(rgb[i].b), c(rgb[i].g), c(rgb[i].r)};
                 }
-            } else if (by == "label") {
-                const auto l = pc::io::labels(blob, "label");
-                for (std::size_t i = 0; i < l.size(); ++i) {
-                    colour[i] = label_colour(l[i]);
-                }
             } else {
-                std::vector<double> v;
-                if (by == "x" || by == "y" || by == "z") {
-                    v.resize(blob.size());
-                    for (std::size_t i = 0; i < v.size(); ++i) {
-                        const pcl::PointXYZ p = view[i];
-                        v[i] = by == "x" ? p.x : by == "y" ? p.y : p.z;
-                    }
-                } else {
-                    v = field_values(blob, by);
-                }
-                std::vector<double> finite_v;
-                for (double x : v) {
-                    if (std::isfinite(x)) {
-                        finite_v.push_back(x);
-                    }
-                }
+                pc::filters::ColorizeParams cp{.by = by};
                 if (!range.empty()) {
-                    const auto parts = split(range, ':');
-                    if (parts.size() != 2) {
-                        throw pc::InvalidArgument("--range must be LO:HI, got '" + range + "'");
-                    }
-                    lo_v = pc::cli::parse_double("range", parts[0]);
-                    hi_v = pc::cli::parse_double("range", parts[1]);
-                } else if (!finite_v.empty()) {
-                    lo_v = pc::percentile(finite_v, 2);
-                    hi_v = pc::percentile(finite_v, 98);
+                    const pc::filters::Interval r = pc::filters::parse_interval("range", range);
+                    cp.range = std::array<double, 2>{r.lo, r.hi};
                 }
-                cv::Mat ramp(1, 256, CV_8UC1), mapped;
-                for (int k = 0; k < 256; ++k) {
-                    ramp.at<std::uint8_t>(0, k) = static_cast<std::uint8_t>(k);
-                }
-                cv::applyColorMap(ramp, mapped, cv::COLORMAP_VIRIDIS);
-                for (std::size_t i = 0; i < v.size(); ++i) {
-                    const double t = hi_v > lo_v ? (v[i] - lo_v) / (hi_v - lo_v) : 0.5;
-                    const int k =
-                        std::isfinite(t) ? static_cast<int>(std::clamp(t, 0.0, 1.0) * 255) : 0;
-                    colour[i] = mapped.at<cv::Vec3b>(0, k);
-                }
-                bar = true;
+                const pc::filters::Colorized c = pc::cli::naming(
+                    io.input_name(), [&] { return pc::filters::colorize(blob, cp); });
+                std::transform(c.colors.begin(), c.colors.end(), colour.begin(), bgr);
+                lo_v = c.lo;
+                hi_v = c.hi;
+                bar = by != "label";
                 color = by;
             }
         }
@@ -286,14 +232,11 @@ int main(int argc, char** argv) {
         if (bar) {  // a colour bar on the right: the map from LO (bottom) to HI (top)
             const int bw = 70;
             cv::Mat strip(sheet.rows, bw, CV_8UC3, cv::Scalar(255, 255, 255));
-            cv::Mat ramp(sheet.rows - 40, 1, CV_8UC1), mapped;
-            for (int k = 0; k < ramp.rows; ++k) {
-                ramp.at<std::uint8_t>(k, 0) =
-                    static_cast<std::uint8_t>(255 - 255 * k / std::max(1, ramp.rows - 1));
+            const int rows = sheet.rows - 40;
+            for (int k = 0; k < rows; ++k) {
+                const double t = 1.0 - static_cast<double>(k) / std::max(1, rows - 1);
+                strip(cv::Rect(4, 20 + k, 16, 1)) = cv::Scalar(bgr(pc::filters::viridis(t)));
             }
-            cv::applyColorMap(ramp, mapped, cv::COLORMAP_VIRIDIS);
-            cv::resize(mapped, mapped, cv::Size(16, ramp.rows), 0, 0, cv::INTER_NEAREST);
-            mapped.copyTo(strip(cv::Rect(4, 20, 16, ramp.rows)));
             const auto text = [&](const std::string& t, int y) {
                 cv::putText(strip, t, cv::Point(22, y), cv::FONT_HERSHEY_SIMPLEX, 0.35,
                             cv::Scalar(0, 0, 0), 1);

@@ -29,8 +29,8 @@ std::string valid_cloud() {
 
 /// What a tool needs on its command line besides the cloud it reads: pc_compare also takes the
 /// reference cloud B (its A is stdin or -i); pc_eval scores `label` against itself; pc_synth makes
-/// a tiny scene; pc_range a range on x; pc_lift takes the shipped view sample's cameras and masks,
-/// pc_maskeval its masks twice.
+/// a tiny scene; pc_range a range on x; pc_groupby a folder for its files; pc_lift takes the
+/// shipped view sample's cameras and masks, pc_maskeval its masks twice.
 std::string extra_args(const std::string& tool) {
     if (tool == "pc_compare") {
         return " " + std::string(PC_SAMPLE_CLOUDS_DIR) + "/fruit_small.ply";
@@ -44,6 +44,9 @@ std::string extra_args(const std::string& tool) {
     if (tool == "pc_maskeval") {
         const std::string masks = std::string(PC_SAMPLE_CLOUDS_DIR) + "/views/masks";
         return " " + masks + " " + masks;
+    }
+    if (tool == "pc_groupby") {
+        return " --pattern \"$(mktemp -d)/c_#.pcd\"";  // its files out of the test's folder
     }
     if (tool == "pc_range") {
         return " --limits 'x[:]'";

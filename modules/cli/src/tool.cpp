@@ -220,11 +220,15 @@ Container container_for(const std::string& path, const std::string& to) {
 
 namespace {
 
-void write_container(
-    Container c, io::PcdEncoding pcd, bool binary, const io::Blob& blob, io::ByteSink& sink) {
+void write_container(Container c,
+                     io::PcdEncoding pcd,
+                     bool binary,
+                     bool ply_scalars,
+                     const io::Blob& blob,
+                     io::ByteSink& sink) {
     switch (c) {
         case Container::kPly:
-            io::write_ply(blob, binary, sink);
+            io::write_ply(blob, binary, sink, ply_scalars);
             break;
         case Container::kText:
             io::write_text(blob, sink);
@@ -241,7 +245,7 @@ void write_cloud_file(const std::string& path, const io::Blob& blob) {
     const Container c = container_for(path);
     AtomicFile file(path);
     io::FdSink sink(file.fd(), path);
-    write_container(c, io::PcdEncoding::kBinary, true, blob, sink);
+    write_container(c, io::PcdEncoding::kBinary, true, false, blob, sink);
     file.commit();
 }
 
@@ -315,8 +319,9 @@ void Streams::write(const io::Blob& blob) {
     const io::PcdEncoding e = encoding_ == "ascii"    ? io::PcdEncoding::kAscii
                               : encoding_ == "binary" ? io::PcdEncoding::kBinary
                                                       : io::PcdEncoding::kBinaryCompressed;
-    write_bytes(
-        [&](io::ByteSink& sink) { write_container(c, e, encoding_ != "ascii", blob, sink); });
+    write_bytes([&](io::ByteSink& sink) {
+        write_container(c, e, encoding_ != "ascii", ply_scalars_, blob, sink);
+    });
 }
 
 void Streams::write_text(std::string_view text) {
@@ -376,7 +381,10 @@ po::options_description Tool::Impl::common_options(Streams& io) const {
             "to", po::value<std::string>(&io.container_)->default_value("auto"),
             "output container: pcd, ply, xyz (text: a //X Y Z ... line, then a point a line), or "
             "auto (by -o's extension: .ply PLY, .xyz .txt .asc text, else PCD; .las and other "
-            "formats refused)");
+            "formats refused)")(
+            "ply-scalars", po::bool_switch(&io.ply_scalars_),
+            "PLY: write every field but x y z, normals, colour and intensity as scalar_NAME, "
+            "which CloudCompare loads as scalar fields by itself");
     }
     return common;
 }

@@ -166,6 +166,25 @@ void keep_points(Blob& blob, std::span<const std::uint32_t> indices) {
     set_point_count(blob, indices.size());
 }
 
+Blob copy_points(const Blob& blob, std::span<const std::uint32_t> indices) {
+    Blob out = empty_like(blob);
+    const std::size_t step = blob.cloud.point_step;
+    const std::size_t n = blob.size();
+    out.cloud.data.resize(indices.size() * step);
+    for (std::size_t j = 0; j < indices.size(); ++j) {
+        if (indices[j] >= n) {
+            throw Error("copy_points: indices must be < " + std::to_string(n) + ", got " +
+                        std::to_string(indices[j]));
+        }
+        std::memcpy(out.cloud.data.data() + j * step,
+                    blob.cloud.data.data() + std::size_t{indices[j]} * step, step);
+    }
+    out.cloud.width = static_cast<std::uint32_t>(indices.size());
+    out.cloud.row_step = static_cast<std::uint32_t>(indices.size() * step);
+    update_is_dense(out);
+    return out;
+}
+
 void keep_flagged(Blob& blob, std::span<const std::uint8_t> flags, bool keep_set) {
     const std::size_t step = blob.cloud.point_step;
     const std::size_t n = blob.size();

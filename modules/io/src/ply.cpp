@@ -241,6 +241,8 @@ VertexLayout vertex_layout(const Element& e) {
             std::string name = p.name;
             if (name == "nx" || name == "ny" || name == "nz") {
                 name = std::string("normal_") + name.back();
+            } else if (name.rfind("scalar_", 0) == 0 && name.size() > 7) {
+                name.erase(0, 7);  // CloudCompare's scalar fields: scalar_label is label
             }
             if (name != p.name && names.count(name) != 0) {
                 name = p.name;  // both nx and normal_x exist: keep the file's names
@@ -511,7 +513,7 @@ ReadResult parse_ply(std::string_view bytes) {
     return r;
 }
 
-void write_ply(const Blob& blob, bool binary, ByteSink& sink) {
+void write_ply(const Blob& blob, bool binary, ByteSink& sink, bool scalar_prefix) {
     check_layout(blob);
     struct Out {
         std::string name;
@@ -540,6 +542,9 @@ void write_ply(const Blob& blob, bool binary, ByteSink& sink) {
         std::string name = f.name;
         if (name == "normal_x" || name == "normal_y" || name == "normal_z") {
             name = std::string("n") + name.back();
+        } else if (scalar_prefix && name != "x" && name != "y" && name != "z" &&
+                   name != "intensity") {
+            name = "scalar_" + name;  // what CloudCompare loads as a scalar field by itself
         }
         for (std::uint32_t c = 0; c < f.count; ++c) {
             props.push_back({f.count == 1 ? name : name + "_" + std::to_string(c),

@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -108,6 +109,26 @@ Step apply_crop(io::Blob in, const filters::CropParams& p) {
     io::keep_points(in, kept);
     return finish_step(std::move(in), std::move(note), "crop", n,
                        "is the box in the cloud's units and frame?");
+}
+
+Step apply_colorize(io::Blob in, const filters::ColorizeParams& p) {
+    const filters::Colorized c = filters::colorize(in, p);
+    auto& fields = in.cloud.fields;
+    fields.erase(
+        std::remove_if(fields.begin(), fields.end(),
+                       [](const pcl::PCLPointField& f) {
+                           return f.name == "rgba" || f.name == "red" || f.name == "green" ||
+                                  f.name == "blue" ||
+                                  (f.name == "rgb" && f.datatype != pcl::PCLPointField::UINT32);
+                       }),
+        fields.end());
+    io::set_field(in, "rgb", filters::packed(c.colors));
+    std::string note = "colorize: " + std::to_string(in.size()) + " points by " + p.by;
+    if (p.by != "label") {
+        note += ", viridis from " + format_number(c.lo) + " to " + format_number(c.hi);
+    }
+    const std::size_t n = in.size();
+    return finish_step(std::move(in), std::move(note), "colorize", n, "");
 }
 
 Step apply_range(io::Blob in, const filters::RangeFilterParams& p) {
@@ -268,6 +289,39 @@ ChainResult run_chain(io::Blob in,
         take(apply_recursive_split(std::move(cur), *p.split));
     }
     out.labelled = std::move(cur);
+    return out;
+}
+
+MarkedChain run_chain_marked(io::Blob in,
+                             const ChainParams& p,
+                             const std::function<void(const std::string&)>& progress) {
+    if (p.voxel) {
+        throw InvalidArgument(
+            "the whole cloud cannot be labelled after a voxel step (its points are voxel "
+            "centroids, not the input's): drop --leaf");
+    }
+    // Each point carries its index through the steps, which pass every field through.
+    constexpr const char* kSource = "pc_source_index";
+    const std::size_t n = in.size();
+    std::vector<std::uint32_t> index(n);
+    std::iota(index.begin(), index.end(), 0u);
+    io::Blob work = in;
+    io::set_field(work, kSource, index);
+    MarkedChain out{run_chain(std::move(work), p, progress), std::move(in)};
+    std::vector<std::uint32_t> labels(n, 0);
+    io::Blob& labelled = out.chain.labelled;
+    if (labelled.size() > 0) {
+        const std::vector<std::uint32_t> source = io::labels(labelled, kSource);
+        const std::vector<std::uint32_t> label = io::labels(labelled, "label");
+        for (std::size_t j = 0; j < source.size(); ++j) {
+            labels[source[j]] = label[j];
+        }
+    }
+    auto& fields = labelled.cloud.fields;
+    fields.erase(std::remove_if(fields.begin(), fields.end(),
+                                [&](const pcl::PCLPointField& f) { return f.name == kSource; }),
+                 fields.end());
+    io::set_field(out.marked, "label", labels);
     return out;
 }
 

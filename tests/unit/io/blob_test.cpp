@@ -66,6 +66,25 @@ TEST(Blob, KeepFlaggedKeepsTheSameRowsAsTheIndicesOfItsFlags) {
     EXPECT_THROW(keep_flagged(b, std::vector<std::uint8_t>(2, 0), true), Error);
 }
 
+TEST(Blob, CopyPointsTakesAnyOrderAndLeavesTheSourceAlone) {
+    const Blob b = test::make_blob(
+        {{"x", F::FLOAT32}, {"id", F::UINT16}}, 5, 1,
+        [](std::size_t i, std::size_t k, std::uint32_t) { return k == 0 ? i * 0.5 : i + 100.0; });
+    const Blob original = b;
+    const std::vector<std::uint32_t> idx = {4, 0, 4};
+    const Blob c = copy_points(b, idx);
+    ASSERT_EQ(c.size(), 3u);
+    EXPECT_EQ(c.cloud.fields.size(), 2u);
+    EXPECT_EQ(c.cloud.row_step, 3u * c.cloud.point_step);
+    for (std::size_t j = 0; j < idx.size(); ++j) {
+        EXPECT_EQ(0, std::memcmp(&c.cloud.data[j * c.cloud.point_step],
+                                 &b.cloud.data[idx[j] * b.cloud.point_step], b.cloud.point_step));
+    }
+    EXPECT_EQ(b.cloud.data, original.cloud.data);
+    EXPECT_EQ(copy_points(b, {}).size(), 0u);
+    EXPECT_THROW((void)copy_points(b, std::vector<std::uint32_t>{5}), Error);
+}
+
 TEST(Blob, KeepPointsRejectsOutOfRangeRepeatedAndUnorderedIndices) {
     for (const std::vector<std::uint32_t>& idx : {std::vector<std::uint32_t>{3}, {1, 1}, {2, 0}}) {
         Blob b = test::random_xyz(3);

@@ -5,6 +5,7 @@
 
 #include <pc/core/error.h>
 #include <pc/io/ply.h>
+#include <pc/io/text.h>
 
 #include "support/corpus.h"
 
@@ -143,6 +144,30 @@ TEST(Ply, WriteThenReadKeepsFieldsAndColour) {
         EXPECT_EQ(out.cloud.data, in.cloud.data);
         EXPECT_EQ(out.cloud.fields.size(), in.cloud.fields.size());
     }
+}
+
+TEST(Ply, ScalarPrefixForCloudCompareRoundTrips) {
+    // x y z, colour, normals stay; a label and an intensity: CloudCompare loads `scalar_label`
+    // (and intensity) as scalar fields by itself; reading strips the prefix again.
+    const Blob in =
+        parse_text("x y z r g b nx ny nz label intensity\n1 2 3 255 0 0 0 0 1 7 0.5\n").blob;
+    StringSink sink;
+    write_ply(in, true, sink, true);
+    EXPECT_NE(sink.out.find("property uint scalar_label\n"), std::string::npos) << sink.out;
+    EXPECT_NE(sink.out.find("property float intensity\n"), std::string::npos);
+    EXPECT_NE(sink.out.find("property float nx\n"), std::string::npos);
+    EXPECT_EQ(sink.out.find("scalar_x"), std::string::npos);
+    const Blob back = parse_ply(sink.out).blob;
+    EXPECT_EQ(back.cloud.data, in.cloud.data);
+    ASSERT_NE(find_field(back, "label"), nullptr);
+    // A file with both label and scalar_label keeps both names.
+    const Blob both = parse_ply(test::ply_header("ascii", "1",
+                                                 "property float x\nproperty float y\n"
+                                                 "property float z\nproperty uint label\n"
+                                                 "property uint scalar_label\n") +
+                                "0 0 0 1 2\n")
+                          .blob;
+    EXPECT_NE(find_field(both, "scalar_label"), nullptr);
 }
 
 TEST(Ply, EmptyVertexElementIsAnEmptyCloud) {

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include <pc/core/error.h>
 #include <pc/io/read.h>
 #include <pc/io/sink.h>
 
@@ -60,8 +61,25 @@ private:
     std::string encoding_ = "binary", container_ = "auto", input_format_;
     std::uint64_t max_input_bytes_ = io::kDefaultMaxInputBytes;
     bool verbose_ = false, quiet_ = false, written_ = false, failed_ = false;
+    bool ply_scalars_ = false;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
+
+/// Runs `f` and returns what it returns; a pc::IoError that does not start with `input` gets it
+/// in front ("tree.ply: no field 'opacity'"), so that an algorithm's error names the file as a
+/// reader's does.
+template <class F>
+auto naming(const std::string& input, F&& f) -> decltype(f()) {
+    try {
+        return f();
+    } catch (const IoError& e) {
+        const std::string what = e.what();
+        if (what.rfind(input + ":", 0) == 0) {
+            throw;
+        }
+        throw IoError(input + ": " + what);
+    }
+}
 
 /// The toolkit's version ("0.1.0"), as --version prints it and reports carry it.
 [[nodiscard]] const char* version();

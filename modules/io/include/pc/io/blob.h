@@ -48,6 +48,10 @@ void reserve_points(Blob& blob, std::size_t points);
 /// compacted, not copied. The result is unorganised (height 1). Throws pc::Error on a bad index.
 void keep_points(Blob& blob, std::span<const std::uint32_t> indices);
 
+/// A new cloud of the points at `indices` (any order, repeats allowed, each < size()), with every
+/// field: a subset copied out, the source untouched. Throws pc::Error on a bad index.
+[[nodiscard]] Blob copy_points(const Blob& blob, std::span<const std::uint32_t> indices);
+
 /// Keeps the points whose flag is set (`keep_set`) or clear (not `keep_set`), one flag per point,
 /// in place as keep_points(), with no list of indices (4 bytes a kept point). Throws pc::Error
 /// when the flags are not one per point.

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include <pc/filters/colorize.h>
 #include <pc/filters/range_filter.h>
 #include <pc/io/blob.h>
 #include <pc/pipeline/presets.h>
@@ -41,6 +42,9 @@ struct Step {
 /// `rule` says which. A cloud without colour passes through under `auto` (a word needs colour).
 [[nodiscard]] Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p);
 [[nodiscard]] Step apply_crop(io::Blob in, const filters::CropParams& p);
+/// Sets `rgb` to filters::colorize's colours; the old colour fields (rgb, rgba, red green blue)
+/// go, every other field passes through.
+[[nodiscard]] Step apply_colorize(io::Blob in, const filters::ColorizeParams& p);
 /// Keeps the points whose fields pass the ranges (filters::range_filter, PDAL's rule).
 [[nodiscard]] Step apply_range(io::Blob in, const filters::RangeFilterParams& p);
 /// One point per occupied voxel (io::aggregate: centroid, mean colour, majority integer fields).
@@ -72,6 +76,20 @@ struct ChainResult {
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
+
+/// run_chain, and also the input with the chain's `label` (U 4) on every point
+/// (pc_fruitcount --cloud-all): the cluster of each point that reached the end of the chain, 0 for
+/// the points a step removed or DBSCAN left as noise; every field of the input passes through.
+/// Costs one copy of the input. Not with a voxel step, whose points are not the input's
+/// (pc::InvalidArgument).
+struct MarkedChain {
+    ChainResult chain;
+    io::Blob marked;
+};
+[[nodiscard]] MarkedChain run_chain_marked(
+    io::Blob in,
+    const ChainParams& p,
+    const std::function<void(const std::string&)>& progress = {});
 
 /// The count again at other eps: DBSCAN and the split rerun on the points DBSCAN saw (the
 /// chain's labelled cloud), at `factors` × the eps its DBSCAN step used.
