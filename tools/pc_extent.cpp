@@ -1,5 +1,6 @@
 // pc_extent: points, bounding box, convex hull volume and area, mean radius (paper Table 3), for
 // whole clouds side by side and, with --per-label, for each cluster.
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 
@@ -9,9 +10,11 @@
 #include <pc/features/extent_report.h>
 #include <pc/io/points.h>
 
+#include "plots.h"
+
 int main(int argc, char** argv) {
     std::vector<std::string> inputs;
-    std::string names_text;
+    std::string names_text, plot;
     bool per_label = false, csv = false, markdown = false;
     pc::cli::Tool tool("pc_extent",
                        "points, bounding box, convex hull volume/area and mean radius of clouds "
@@ -20,6 +23,9 @@ int main(int argc, char** argv) {
     tool.inputs(&inputs, "clouds to measure, side by side ('-' = stdin)");
     tool.option("names", &names_text, "comma-separated names for the inputs (default: file names)");
     tool.flag("per-label", &per_label, "also measure each cluster of `label` (0 = noise skipped)");
+    tool.option("plot", &plot,
+                "also draw points, hull volume and mean radius of the clouds side by side as bars "
+                "into this PNG (its numbers beside it as .csv)");
     tool.flag("csv", &csv, "CSV rows instead of JSON");
     tool.flag("markdown", &markdown, "a markdown table instead of JSON");
     tool.epilog("\nDefinitions (centroid, hull, radius) in docs/tools/pc_extent.md.\n");
@@ -27,6 +33,7 @@ int main(int argc, char** argv) {
         if (csv && markdown) {
             throw pc::InvalidArgument("--csv and --markdown exclude each other");
         }
+        pc::tools::check_plot_path(plot);
         std::vector<std::string> names;
         std::stringstream ss(names_text);
         for (std::string n; std::getline(ss, n, ',');) {
@@ -73,6 +80,22 @@ int main(int argc, char** argv) {
         }
         if (failed == rows.size()) {
             return;  // nothing measured: only the error lines
+        }
+        if (!plot.empty()) {
+            using Kind = pc::charts::Panel::Kind;
+            pc::charts::Panel n{Kind::kBars, "points", "", {}, {{}}},
+                volume{Kind::kBars, "convex hull volume", "", {}, {{}}},
+                radius{Kind::kBars, "mean radius", "", {}, {{}}};
+            for (const auto& r : rows) {
+                const bool ok = r.error.empty();
+                for (auto* panel : {&n, &volume, &radius}) {
+                    panel->names.push_back(r.name);
+                }
+                n.values[0].push_back(ok ? static_cast<double>(r.whole.points) : NAN);
+                volume.values[0].push_back(ok ? r.whole.hull_volume : NAN);
+                radius.values[0].push_back(ok ? r.whole.mean_radius : NAN);
+            }
+            pc::tools::write_plot(plot, {n, volume, radius});
         }
         io.write_text(
             pc::features::extent_report(rows,

@@ -7,22 +7,15 @@
 #include <pc/pipeline/count_report.h>
 
 #include "color_options.h"
+#include "count_plot.h"
+#include "plots.h"
 #include "split_options.h"
+#include "stem.h"
 
 namespace pl = pc::pipeline;
 namespace seg = pc::segmentation;
 
 namespace {
-
-/// `pattern` with every "{stem}" replaced by the input's file name without its extension.
-std::string cloud_path(std::string pattern, const std::string& input) {
-    const std::string stem =
-        input == "-" ? std::string("stdin") : std::filesystem::path(input).stem().string();
-    for (std::size_t at; (at = pattern.find("{stem}")) != std::string::npos;) {
-        pattern.replace(at, 6, stem);
-    }
-    return pattern;
-}
 
 std::string triple_text(const std::array<double, 3>& v) {
     return pc::format_number(v[0]) + "," + pc::format_number(v[1]) + "," + pc::format_number(v[2]);
@@ -43,7 +36,7 @@ int main(int argc, char** argv) {
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
     bool eps_check = false;
-    std::string cloud_out, cloud_all;
+    std::string cloud_out, cloud_all, plot;
 
     pc::cli::Tool tool("pc_fruitcount",
                        "count fruit: colour filter, crop, voxel, kNN outlier, DBSCAN, recursive "
@@ -111,6 +104,9 @@ int main(int argc, char** argv) {
                 "also write the labelled cloud to this file (binary PCD, or binary PLY for a .ply "
                 "name); {stem} becomes the input's name without extension (needed for several "
                 "inputs)");
+    tool.option("plot", &plot,
+                "also draw the cluster sizes and radii as histograms into this PNG (its numbers "
+                "beside it as .csv); {stem} as for --cloud");
     tool.option("cloud-all", &cloud_all,
                 "also write the whole input with the chain's label on every point (0: removed by "
                 "a step, or noise), every field kept; {stem} as for --cloud");
@@ -130,19 +126,14 @@ int main(int argc, char** argv) {
             chain.voxel = voxel;
         }
         for (const auto& [option, path] :
-             {std::pair<std::string, const std::string*>{"cloud", &cloud_out},
-              std::pair<std::string, const std::string*>{"cloud-all", &cloud_all}}) {
-            if (path->empty()) {
-                continue;
+             {std::pair{"cloud", &cloud_out}, std::pair{"cloud-all", &cloud_all}}) {
+            pc::tools::check_stem(option, *path, inputs.size());
+            if (!path->empty()) {
+                (void)pc::cli::container_for(*path);  // a .las name refused before any work
             }
-            if (inputs.size() > 1 && path->find("{stem}") == std::string::npos) {
-                throw pc::InvalidArgument("--" + option +
-                                          ": with several inputs, name the files with {stem} (for "
-                                          "example --" +
-                                          option + " out/{stem}.pcd)");
-            }
-            (void)pc::cli::container_for(*path);  // a .las name refused before any work
         }
+        pc::tools::check_plot_path(plot);
+        pc::tools::check_stem("plot", plot, inputs.size());
         if (!cloud_all.empty() && chain.voxel) {
             throw pc::InvalidArgument(
                 "--cloud-all: the whole cloud cannot be labelled after a "
@@ -157,7 +148,7 @@ int main(int argc, char** argv) {
                 marked.chain = pl::run_chain(std::move(in), chain, progress);
             } else {
                 marked = pl::run_chain_marked(std::move(in), chain, progress);
-                pc::cli::write_cloud_file(cloud_path(cloud_all, path), marked.marked);
+                pc::cli::write_cloud_file(pc::tools::with_stem(cloud_all, path), marked.marked);
             }
             const pl::ChainResult& r = marked.chain;
             const auto summary = pl::summarize(r.labelled, chain.count_min_points);
@@ -173,7 +164,11 @@ int main(int argc, char** argv) {
                 }
             }
             if (!cloud_out.empty()) {
-                pc::cli::write_cloud_file(cloud_path(cloud_out, path), r.labelled);
+                pc::cli::write_cloud_file(pc::tools::with_stem(cloud_out, path), r.labelled);
+            }
+            if (!plot.empty()) {
+                pc::tools::write_plot(pc::tools::with_stem(plot, path),
+                                      pc::tools::count_panels(summary));
             }
             return pl::count_report(summary, gt, r.steps, warnings, check);
         });

@@ -11,13 +11,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include <pc/cli/tool.h>
+#include <pc/cli/report.h>
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
 #include <pc/evaluation/mask_scores.h>
 #include <pc/evaluation/paired_tests.h>
 
 #include "images.h"
+#include "plots.h"
 
 namespace ev = pc::evaluation;
 namespace fs = std::filesystem;
@@ -176,6 +177,7 @@ Json summary(const std::vector<std::map<std::string, double>>& views) {
 int main(int argc, char** argv) {
     std::vector<std::string> dirs;
     std::string against, kind_name = "auto";
+    std::string plot;
     bool csv = false;
     pc::cli::Tool tool("pc_maskeval",
                        "score predicted masks or renders against ground truth, view by view "
@@ -192,6 +194,9 @@ int main(int argc, char** argv) {
                 "auto (colour ground truth: images; 16-bit or more than two levels: instance "
                 "ids; else binary), binary, instance or image");
     tool.flag("csv", &csv, "one CSV row per view instead of JSON");
+    tool.option("plot", &plot,
+                "also draw each score over the views as box plots, a box per method, into this "
+                "PNG (its numbers beside it as .csv)");
     tool.epilog(
         "\nBinary masks: JPEG fruit where > 125, others where not 0 (as pc_lift).\n"
         "See docs/tools/pc_maskeval.md.\n");
@@ -200,6 +205,7 @@ int main(int argc, char** argv) {
             throw pc::InvalidArgument("expected two folders PRED_DIR GT_DIR, got " +
                                       std::to_string(dirs.size()));
         }
+        pc::tools::check_plot_path(plot);
         if (kind_name != "auto" && kind_name != "binary" && kind_name != "instance" &&
             kind_name != "image") {
             throw pc::InvalidArgument("--kind must be auto, binary, instance or image, got '" +
@@ -219,11 +225,14 @@ int main(int argc, char** argv) {
         if (common.empty()) {
             throw pc::IoError(dirs[0] + ": no image matches one of " + dirs[1] + " by name");
         }
+        std::vector<std::string> warnings;
         if (!missing.empty()) {
-            io.warn(std::to_string(missing.size()) + " of " + std::to_string(truth.size()) +
-                    " ground-truth views have no prediction" +
-                    (against.empty() ? "" : " in both folders") +
-                    " and are left out (first: " + missing.front() + ")");
+            warnings.push_back(std::to_string(missing.size()) + " of " +
+                               std::to_string(truth.size()) +
+                               " ground-truth views have no prediction" +
+                               (against.empty() ? "" : " in both folders") +
+                               " and are left out (first: " + missing.front() + ")");
+            io.warn(warnings.back());
         }
         const Kind kind = kind_name == "binary"     ? Kind::kBinary
                           : kind_name == "instance" ? Kind::kInstance
@@ -239,6 +248,21 @@ int main(int argc, char** argv) {
             }
         }
         io.note(std::to_string(common.size()) + " views, " + kind_word);
+        if (!plot.empty()) {  // a panel per score, a box per method
+            std::vector<pc::charts::Panel> panels;
+            for (const auto& [metric, unused] : methods.front().views.front()) {
+                pc::charts::Panel panel{pc::charts::Panel::Kind::kBox, metric, "", {}, {}};
+                for (const Method& m : methods) {
+                    panel.names.push_back(std::filesystem::path(m.dir).filename().string());
+                    panel.values.emplace_back();
+                    for (const auto& view : m.views) {
+                        panel.values.back().push_back(view.at(metric));
+                    }
+                }
+                panels.push_back(std::move(panel));
+            }
+            pc::tools::write_plot(plot, panels);
+        }
         std::ostringstream out;
         if (csv) {
             out << "view";
@@ -271,11 +295,12 @@ int main(int argc, char** argv) {
             }
             return Json{{"pred", m.dir}, {"summary", summary(m.views)}, {"views", per}};
         };
-        Json j = {{"tool", "pc_maskeval"},
-                  {"gt", dirs[1]},
-                  {"kind", kind_word},
-                  {"views", common.size()},
-                  {"missing", missing}};
+        Json j = pc::cli::report_header(io);
+        j.update(Json{{"pred", dirs[0]},
+                      {"gt", dirs[1]},
+                      {"kind", kind_word},
+                      {"views", common.size()},
+                      {"missing", missing}});
         j["method"] = method_json(methods[0]);
         if (methods.size() == 2) {
             j["against"] = method_json(methods[1]);
@@ -307,6 +332,7 @@ int main(int argc, char** argv) {
             }
             j["paired"] = paired;
         }
+        j["warnings"] = warnings;
         io.write_text(j.dump(1) + "\n");
     });
 }

@@ -45,6 +45,10 @@ std::string extra_args(const std::string& tool) {
         const std::string masks = std::string(PC_SAMPLE_CLOUDS_DIR) + "/views/masks";
         return " " + masks + " " + masks;
     }
+    if (tool == "pc_plot") {  // a one-bar plot's CSV, written where the shell says
+        return " \"$(f=$(mktemp); printf 'panel,kind,xlabel,name,value\\nt,bars,,a,1\\n' >\"$f\"; "
+               "echo \"$f\")\"";
+    }
     if (tool == "pc_groupby") {
         return " --pattern \"$(mktemp -d)/c_#.pcd\"";  // its files out of the test's folder
     }
@@ -57,8 +61,11 @@ std::string extra_args(const std::string& tool) {
     return "";
 }
 
-/// Tools that read no cloud: they make one (pc_synth) or read folders of images (pc_maskeval).
-bool generator(const std::string& tool) { return tool == "pc_synth" || tool == "pc_maskeval"; }
+/// Tools that read no cloud: they make one (pc_synth), read folders of images (pc_maskeval) or a
+/// plot's CSV (pc_plot).
+bool generator(const std::string& tool) {
+    return tool == "pc_synth" || tool == "pc_maskeval" || tool == "pc_plot";
+}
 
 /// Tools whose job is the format itself: every edge-case file must pass through them.
 bool format_tool(const std::string& tool) { return tool == "pc_info" || tool == "pc_convert"; }

@@ -152,6 +152,43 @@ TEST(Reports, TheParallelRecipeGivesTheRowsOfOneProcess) {
     }
 }
 
+TEST(Reports, PlotsAndTheirNumbersBesideThem) {
+    TempDir dir;
+    const std::string sample = kSamples + "plum_bunches_explicit.pcd";
+    const RunResult r =
+        run_shell("@pc_fruitcount -q -i " + sample + " --plot " + dir.file("c.png"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(slurp(dir.file("c.png")).substr(1, 3), "PNG");
+    // The CSV's cluster sizes are the report's clusters' points, in order.
+    std::stringstream csv(slurp(dir.file("c.csv")));
+    std::string line;
+    std::getline(csv, line);
+    EXPECT_EQ(line, "panel,kind,xlabel,name,value");
+    for (const auto& c : j["clusters"]) {
+        ASSERT_TRUE(std::getline(csv, line));
+        EXPECT_EQ(line, "cluster sizes,histogram,points a cluster,," +
+                            std::to_string(c["points"].get<int>()));
+    }
+    const RunResult extent = run_shell("@pc_extent " + sample + " " + kSamples +
+                                       "fruit_small.ply --plot " + dir.file("e.png"));
+    ASSERT_EQ(extent.code, 0) << extent.err;
+    EXPECT_NE(slurp(dir.file("e.csv")).find("points,bars,,fruit_small,5640\n"), std::string::npos);
+    // Several inputs need {stem}; a plot is a PNG.
+    EXPECT_EQ(run_shell("@pc_count " + sample + " " + sample + " --plot " + dir.file("x.png")).code,
+              2);
+    EXPECT_EQ(run_shell("@pc_count -i " + sample + " --plot " + dir.file("x.jpg")).code, 2);
+    EXPECT_EQ(run_shell("@pc_maskeval " + kSamples + "views/masks " + kSamples +
+                        "views/masks --plot " + dir.file("m.png"))
+                  .code,
+              0);
+    EXPECT_NE(slurp(dir.file("m.csv")).find("iou,box,,masks,1\n"), std::string::npos);
+    // pc_plot draws the CSV again, after an edit or not: the same picture.
+    const RunResult again = run_shell("@pc_plot " + dir.file("c.csv") + " -o " + dir.file("d.png"));
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_TRUE(slurp(dir.file("d.png")) == slurp(dir.file("c.png")));
+}
+
 TEST(Reports, ExtentGoesOnPastAFailingInput) {
     TempDir dir;
     const RunResult r = run_shell("@pc_extent " + kSamples + "fruit_small.ply " +
