@@ -55,7 +55,8 @@ int main(int argc, char** argv) {
         const pc::Cloud a = pc::io::xyz(io.read(inputs[0]));
         const pc::Cloud b = pc::io::xyz(io.read(inputs[1]));
         io.note("comparing: nearest neighbours both ways, then voxel coverage");
-        const pf::CompareResult r = pf::compare(a, b, p);
+        const pf::CompareResult r =
+            pf::compare(a, b, p, [&](const std::string& what) { io.note(what); });
         const std::vector<std::string> warnings = pf::compare_warnings(r, p);
         for (const auto& w : warnings) {
             io.warn(w);

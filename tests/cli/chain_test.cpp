@@ -150,6 +150,18 @@ TEST(PcCrop, PaperPresetHasNoCropAndInvnerfsegHasOne) {
     EXPECT_EQ(points(in.out) + points(out.out), 5640u);
 }
 
+TEST(PcDbscan, EmptyCloudWithAnEstimatedEpsIsNotAUsageError) {
+    // An empty cloud has no spacing to estimate eps from: every rule passes it through labelled
+    // (it was exit 2, a usage error, for what is valid data).
+    for (const char* eps : {"auto", "knee", "3xs"}) {
+        const RunResult r =
+            run_shell(std::string("@pc_dbscan --eps ") + eps + " | @pc_count --plain",
+                      xyz_header("0", "binary"));
+        EXPECT_EQ(r.code, 0) << eps << ": " << r.err;
+        EXPECT_EQ(r.out, "0\n") << eps;
+    }
+}
+
 TEST(PcCount, EmptyCloudCountsZeroAndGroundTruthAddsRecovery) {
     const RunResult empty = run_shell("@pc_count --plain", xyz_header("0", "binary"));
     EXPECT_EQ(empty.code, 0) << empty.err;

@@ -221,6 +221,16 @@ TEST(Reports, CompareWarnsAboutCloudsInDifferentFramesAndEmptySides) {
     EXPECT_NE(empty.err.find("A has no finite point"), std::string::npos);
 }
 
+TEST(Reports, ProgressOnAskingAndNeverWithQuiet) {
+    const std::string sample = kSamples + "fruit_small.ply";
+    const RunResult r = run_shell("@pc_compare --progress " + sample + " " + sample);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("pc_compare: A to B: 5640 distances ["), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("pc_compare: coverage: "), std::string::npos) << r.err;
+    EXPECT_EQ(run_shell("@pc_compare " + sample + " " + sample).err, "");  // not a terminal
+    EXPECT_EQ(run_shell("@pc_compare -q --progress " + sample + " " + sample).err, "");
+}
+
 TEST(Reports, EvalTruthWithAWrongKeySaysWhatWasExpected) {
     TempDir dir;
     spit(dir.file("truth.json"), R"({"fruit": []})");

@@ -272,10 +272,10 @@ io::Blob Streams::read(const std::string& path) {
 }
 
 void Streams::note(const std::string& message) const {
-    if (verbose_ && !quiet_) {
-        // Elapsed time since the tool started: progress and cost of each step on large clouds.
-        const double t =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    // Elapsed time since the tool started: progress and cost of each step on large clouds.
+    const double t =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (!quiet_ && (verbose_ || progress_ || (stderr_terminal_ && t >= 1.0))) {
         char stamp[32];
         std::snprintf(stamp, sizeof stamp, " [%.3f s]", t);
         std::cerr << tool_ << ": " << message << stamp << std::endl;
@@ -373,7 +373,9 @@ po::options_description Tool::Impl::common_options(Streams& io) const {
             "refuse inputs larger than this");
     }
     common.add_options()("verbose,v", po::bool_switch(&io.verbose_), "notes and timings on stderr")(
-        "quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
+        "progress", po::bool_switch(&io.progress_),
+        "the notes of work in progress on stderr (by itself on a terminal once a run has taken "
+        "a second)")("quiet,q", po::bool_switch(&io.quiet_), "no notes at all");
     if (cloud_out) {
         common.add_options()("format",
                              po::value<std::string>(&io.encoding_)->default_value("binary"),
@@ -681,6 +683,7 @@ int Tool::run(int argc, char** argv, const std::function<void(Streams&)>& body) 
             throw InvalidArgument("no input: standard input is a terminal; use -i FILE or a pipe");
         }
         io.input_name_ = io::display_name(io.input_);
+        io.stderr_terminal_ = ::isatty(2) != 0;
         if (io.output_ == "-") {
             struct stat st {};
             if (::fstat(1, &st) == 0 && S_ISFIFO(st.st_mode)) {

@@ -138,11 +138,21 @@ void CompareParams::validate() const {
     }
 }
 
-CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& params) {
+CompareResult compare(const Cloud& a,
+                      const Cloud& b,
+                      const CompareParams& params,
+                      const std::function<void(const std::string&)>& progress) {
     params.validate();
+    const auto say = [&](const std::string& what) {
+        if (progress) {
+            progress(what);
+        }
+    };
     CompareResult r;
     r.a_to_b = direction(a, b, params.tau);
+    say("A to B: " + std::to_string(r.a_to_b.points) + " distances");
     r.b_to_a = direction(b, a, params.tau);
+    say("B to A: " + std::to_string(r.b_to_a.points) + " distances");
     r.chamfer = r.a_to_b.mean + r.b_to_a.mean;
     r.precision = r.a_to_b.within_tau;
     r.recall = r.b_to_a.within_tau;
@@ -156,6 +166,8 @@ CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& param
     r.shared_voxels = shared.size();
     r.interior_coverage =
         vb.empty() ? 0.0 : static_cast<double>(shared.size()) / static_cast<double>(vb.size());
+    say("coverage: " + std::to_string(r.shared_voxels) + " of " + std::to_string(r.b_voxels) +
+        " voxels of B");
     return r;
 }
 

@@ -172,8 +172,22 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
     std::string note;
     std::vector<std::pair<std::string, double>> values;
     if (eps.mode == EpsRule::Mode::kKnee) {
-        p.eps = segmentation::estimate_eps(io::XyzPoints(in).view(), p.min_points);
-        note = "dbscan: eps knee = " + format_number(p.eps) + "; ";
+        const io::XyzPoints points(in);
+        std::size_t finite = 0;
+        for (std::size_t i = 0; i < points.view().size; ++i) {
+            finite += is_finite(points.view()[i]);
+        }
+        if (finite < p.min_points) {
+            // No knee without min_points points, and no cluster either: all noise, not an error
+            // (an empty cloud is valid data).
+            p.eps = std::numeric_limits<double>::min();
+            note = "dbscan: " + std::to_string(finite) +
+                   " finite points, fewer than min_points: "
+                   "no eps knee; ";
+        } else {
+            p.eps = segmentation::estimate_eps(points.view(), p.min_points);
+            note = "dbscan: eps knee = " + format_number(p.eps) + "; ";
+        }
     } else if (eps.mode == EpsRule::Mode::kSpacing) {
         const double s = search::median_spacing(io::XyzPoints(in).view());
         values.emplace_back("spacing", s);

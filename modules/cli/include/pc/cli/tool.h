@@ -35,7 +35,8 @@ public:
     void write(const io::Blob& blob);
     /// Writes a text report, atomically for -o FILE.
     void write_text(std::string_view text);
-    /// Prints `<tool>: <message>` on stderr when -v was given.
+    /// Prints `<tool>: <message> [elapsed]` on stderr with -v or --progress, and by itself once
+    /// the run has taken a second when stderr is a terminal (work in progress); never with -q.
     void note(const std::string& message) const;
     /// Prints `<tool>: warning: <message>` on stderr unless -q was given: a valid input whose
     /// result is doubtful (a filter that dropped nearly everything, a count of 0).
@@ -61,7 +62,7 @@ private:
     std::string encoding_ = "binary", container_ = "auto", input_format_;
     std::uint64_t max_input_bytes_ = io::kDefaultMaxInputBytes;
     bool verbose_ = false, quiet_ = false, written_ = false, failed_ = false;
-    bool ply_scalars_ = false;
+    bool ply_scalars_ = false, progress_ = false, stderr_terminal_ = false;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -41,7 +42,12 @@ struct CompareResult {
 /// neighbours (grid + k-d tree). Voxels are floor(p / voxel) on a grid anchored at the origin,
 /// shared by both clouds. Non-finite points are skipped. An empty side gives undefined (NaN)
 /// distances and zero scores.
-[[nodiscard]] CompareResult compare(const Cloud& a, const Cloud& b, const CompareParams& params);
+/// `progress`, when set, hears after each stage (A to B, B to A, coverage): several seconds each
+/// on clouds of millions of points.
+[[nodiscard]] CompareResult compare(const Cloud& a,
+                                    const Cloud& b,
+                                    const CompareParams& params,
+                                    const std::function<void(const std::string&)>& progress = {});
 
 /// What makes a comparison doubtful, in words: an empty side; clouds whose bounding boxes share
 /// under 25 % (different frames?); an F-score under 0.01 (tau in other units?).
