@@ -15,7 +15,7 @@
 int main(int argc, char** argv) {
     std::vector<std::string> inputs;
     std::string names_text, plot;
-    bool per_label = false, csv = false, markdown = false;
+    bool per_label = false, csv = false, markdown = false, jsonl = false;
     pc::cli::Tool tool("pc_extent",
                        "points, bounding box, convex hull volume/area and mean radius of clouds "
                        "(paper Table 3), side by side; --per-label for each cluster",
@@ -27,11 +27,13 @@ int main(int argc, char** argv) {
                 "also draw points, hull volume and mean radius of the clouds side by side as bars "
                 "into this PNG (its numbers beside it as .csv)");
     tool.flag("csv", &csv, "CSV rows instead of JSON");
+    tool.flag("jsonl", &jsonl,
+              "JSON Lines: a line per cloud, with the tool, version and parameters");
     tool.flag("markdown", &markdown, "a markdown table instead of JSON");
     tool.epilog("\nDefinitions (centroid, hull, radius) in docs/tools/pc_extent.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
-        if (csv && markdown) {
-            throw pc::InvalidArgument("--csv and --markdown exclude each other");
+        if (csv + markdown + jsonl > 1) {
+            throw pc::InvalidArgument("--csv, --markdown and --jsonl exclude each other");
         }
         pc::tools::check_plot_path(plot);
         std::vector<std::string> names;
@@ -97,11 +99,11 @@ int main(int argc, char** argv) {
             }
             pc::tools::write_plot(plot, {n, volume, radius});
         }
-        io.write_text(
-            pc::features::extent_report(rows,
-                                        csv ? pc::features::ExtentFormat::kCsv
-                                            : (markdown ? pc::features::ExtentFormat::kMarkdown
-                                                        : pc::features::ExtentFormat::kJson),
-                                        per_label, pc::cli::report_header(io)));
+        io.write_text(pc::features::extent_report(rows,
+                                                  csv        ? pc::features::ExtentFormat::kCsv
+                                                  : markdown ? pc::features::ExtentFormat::kMarkdown
+                                                  : jsonl ? pc::features::ExtentFormat::kJsonLines
+                                                          : pc::features::ExtentFormat::kJson,
+                                                  per_label, pc::cli::report_header(io)));
     });
 }

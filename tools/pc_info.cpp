@@ -43,7 +43,7 @@ ordered_json to_json(const pc::io::CloudInfo& info, const std::string& fmt) {
     j["organised"] = info.organised;
     j["is_dense"] = info.is_dense;
     j["non_finite_points"] = info.non_finite_points;
-    std::string names;
+    std::string names;  // as io::field_names, from the description
     for (const auto& f : info.fields) {
         names += (names.empty() ? "" : " ") + f.name;
     }

@@ -1,5 +1,7 @@
 // The CLI contract (docs/architecture.md), checked on every tool through real processes and pipes.
+#include <cctype>
 #include <filesystem>
+#include <set>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -71,6 +73,60 @@ bool generator(const std::string& tool) {
 bool format_tool(const std::string& tool) { return tool == "pc_info" || tool == "pc_convert"; }
 
 class Contract : public ::testing::TestWithParam<std::string> {};
+
+TEST(Docs, LinksPointIntoTheRepository) {
+    // A new user found links to ../shared/... files that the repository does not have.
+    const std::filesystem::path root = std::filesystem::path(PC_DOCS_DIR).parent_path();
+    std::vector<std::filesystem::path> pages = {root / "README.md", root / "CONTRIBUTING.md"};
+    for (const auto& e : std::filesystem::recursive_directory_iterator(root / "docs")) {
+        if (e.path().extension() == ".md") {
+            pages.push_back(e.path());
+        }
+    }
+    int links = 0;
+    for (const auto& page : pages) {
+        const std::string text = slurp(page.string());
+        EXPECT_EQ(text.find("../shared"), std::string::npos) << page;
+        for (std::size_t at = 0; (at = text.find("](", at)) != std::string::npos; ++at) {
+            const std::size_t end = text.find(')', at);
+            std::string target = text.substr(at + 2, end - at - 2);
+            target = target.substr(0, target.find('#'));
+            if (target.empty() || target.find("://") != std::string::npos) {
+                continue;
+            }
+            ++links;
+            EXPECT_TRUE(std::filesystem::exists(page.parent_path() / target))
+                << page << " links to " << target;
+        }
+    }
+    EXPECT_GT(links, 30);  // the README's tool table alone has more
+}
+
+TEST_P(Contract, EveryOptionOfItsOwnIsOnItsDocPage) {
+    // The options every tool has are on docs/architecture.md; a tool's own options on its page.
+    const std::set<std::string> common = {"help",    "version", "input",           "output",
+                                          "verbose", "quiet",   "max-input-bytes", "progress",
+                                          "format",  "to",      "ply-scalars"};
+    const std::string page = slurp(std::string(PC_DOCS_DIR) + "/tools/" + GetParam() + ".md");
+    std::stringstream help(run_shell("@" + GetParam() + " --help").out);
+    for (std::string line; std::getline(help, line);) {
+        const std::size_t at = line.find("--");
+        // Option lines start with "  --name" or "  -i [ --name ]".
+        if (at == std::string::npos || line.find_first_not_of(" -i[o]vqh", 0) < at) {
+            continue;
+        }
+        std::size_t end = at + 2;
+        while (end < line.size() &&
+               (std::isalnum(static_cast<unsigned char>(line[end])) || line[end] == '-')) {
+            ++end;
+        }
+        const std::string name = line.substr(at + 2, end - at - 2);
+        if (!name.empty() && common.count(name) == 0) {
+            EXPECT_NE(page.find("--" + name), std::string::npos)
+                << "--" << name << " is not on docs/tools/" << GetParam() << ".md";
+        }
+    }
+}
 
 TEST_P(Contract, HelpGoesToStdoutAndExitsZero) {
     const RunResult r = run_shell("@" + GetParam() + " --help");

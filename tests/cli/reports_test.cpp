@@ -201,6 +201,13 @@ TEST(Reports, ExtentGoesOnPastAFailingInput) {
     EXPECT_EQ(j["tool"], "pc_extent");
     EXPECT_TRUE(j["clouds"][1].contains("error"));
     EXPECT_TRUE(j["clouds"][0]["warnings"].empty());
+    const auto lines = json_lines(
+        run_shell("@pc_extent --jsonl " + kSamples + "fruit_small.ply " + dir.file("missing.pcd"))
+            .out);
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(lines[0]["tool"], "pc_extent");
+    EXPECT_EQ(lines[0]["points"], 5640);
+    EXPECT_TRUE(lines[1].contains("error"));
 }
 
 TEST(Reports, CompareWarnsAboutCloudsInDifferentFramesAndEmptySides) {

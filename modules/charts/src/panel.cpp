@@ -13,17 +13,6 @@ const char* kind_name(Panel::Kind k) {
     return k == Panel::Kind::kHistogram ? "histogram" : k == Panel::Kind::kBox ? "box" : "bars";
 }
 
-std::string quoted(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) {
-        return s;
-    }
-    std::string q = "\"";
-    for (char c : s) {
-        q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    }
-    return q + "\"";
-}
-
 /// The cells of one CSV line (RFC 4180 quoting); pc::IoError for an unclosed quote.
 std::vector<std::string> cells(const std::string& line, std::size_t number) {
     std::vector<std::string> out(1);
@@ -58,12 +47,13 @@ std::vector<std::string> cells(const std::string& line, std::size_t number) {
 std::string panels_csv(const std::vector<Panel>& panels) {
     std::string out = "panel,kind,xlabel,name,value\n";
     for (const Panel& p : panels) {
-        const std::string head = quoted(p.title) + "," + kind_name(p.kind) + "," + quoted(p.xlabel);
+        const std::string head =
+            csv_cell(p.title) + "," + kind_name(p.kind) + "," + csv_cell(p.xlabel);
         for (std::size_t k = 0; k < p.values.size(); ++k) {
             for (std::size_t j = 0; j < p.values[k].size(); ++j) {
                 const std::size_t n = p.kind == Panel::Kind::kBars ? j : k;
                 const double v = p.values[k][j];
-                out += head + "," + quoted(n < p.names.size() ? p.names[n] : "") + "," +
+                out += head + "," + csv_cell(n < p.names.size() ? p.names[n] : "") + "," +
                        (std::isfinite(v) ? format_number(v) : "") + "\n";
             }
         }

@@ -92,17 +92,6 @@ std::string cell_text(const ordered_json& v) {
     return v.dump();
 }
 
-std::string csv_cell(const std::string& s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) {
-        return s;
-    }
-    std::string q = "\"";
-    for (char c : s) {
-        q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    }
-    return q + "\"";
-}
-
 std::string markdown_cell(std::string s) {
     for (std::size_t at = 0; (at = s.find('|', at)) != std::string::npos; at += 2) {
         s.replace(at, 1, "\\|");

@@ -10,4 +10,18 @@ std::string format_number(double value) {
     return std::string(buf, res.ptr);
 }
 
+std::string csv_cell(const std::string& text) {
+    if (text.find_first_of(",\"\n\r") == std::string::npos) {
+        return text;
+    }
+    std::string q = "\"";
+    for (char c : text) {
+        q += c;
+        if (c == '"') {
+            q += '"';
+        }
+    }
+    return q + "\"";
+}
+
 }  // namespace pc

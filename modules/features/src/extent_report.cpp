@@ -170,8 +170,16 @@ std::string extent_report(const std::vector<ExtentRow>& rows,
             clouds.push_back(j);
         }
         ordered_json report = header.is_object() ? header : ordered_json::object();
-        report["clouds"] = clouds;
-        out << report.dump(1) << '\n';
+        if (format == ExtentFormat::kJsonLines) {
+            for (const auto& cloud : clouds) {
+                ordered_json line = report;
+                line.update(cloud);
+                out << line.dump() << '\n';
+            }
+        } else {
+            report["clouds"] = clouds;
+            out << report.dump(1) << '\n';
+        }
     }
     return out.str();
 }

@@ -66,12 +66,8 @@ std::vector<double> values_of(const io::Blob& blob, const std::string& by) {
     const pcl::PCLPointField* f = io::find_field(blob, by);
     if (f == nullptr || f->count != 1 ||
         ((f->name == "rgb" || f->name == "rgba") && io::type_size(f->datatype) == 4)) {
-        std::string names;
-        for (const auto& g : blob.cloud.fields) {
-            names += (names.empty() ? "" : " ") + g.name;
-        }
-        throw IoError("no numeric field '" + by +
-                      "' of one element to colour by (the cloud has: " + names + ")");
+        throw IoError("no numeric field '" + by + "' of one element to colour by (the cloud has: " +
+                      io::field_names(blob) + ")");
     }
     for (std::size_t i = 0; i < v.size(); ++i) {
         v[i] = io::value_as_double(blob.cloud.data.data() + i * blob.cloud.point_step + f->offset,

@@ -114,11 +114,8 @@ std::vector<std::uint32_t> range_filter(const io::Blob& blob, const RangeFilterP
     for (const Range& r : params.ranges) {
         const pcl::PCLPointField* f = io::find_field(blob, r.field);
         if (f == nullptr) {
-            std::string names;
-            for (const auto& g : blob.cloud.fields) {
-                names += (names.empty() ? "" : " ") + g.name;
-            }
-            throw IoError("no field '" + r.field + "' (the cloud has: " + names + ")");
+            throw IoError("no field '" + r.field + "' (the cloud has: " + io::field_names(blob) +
+                          ")");
         }
         if ((f->name == "rgb" || f->name == "rgba") && io::type_size(f->datatype) == 4) {
             throw InvalidArgument("'" + f->name +

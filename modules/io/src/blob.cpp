@@ -118,6 +118,14 @@ double value_as_double(const std::uint8_t* p, std::uint8_t datatype) {
     }
 }
 
+std::string field_names(const Blob& blob) {
+    std::string names;
+    for (const auto& f : blob.cloud.fields) {
+        names += (names.empty() ? "" : " ") + f.name;
+    }
+    return names;
+}
+
 Blob empty_like(const Blob& blob) {
     Blob out;
     out.viewpoint = blob.viewpoint;

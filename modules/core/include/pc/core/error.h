@@ -27,4 +27,8 @@ public:
 /// Shortest text that reads back to the same double ("0.05", not "0.050000000000000003").
 [[nodiscard]] std::string format_number(double value);
 
+/// `text` as one CSV cell (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote
+/// or a line break; as it is otherwise.
+[[nodiscard]] std::string csv_cell(const std::string& text);
+
 }  // namespace pc

@@ -33,6 +33,10 @@ struct Blob {
 /// The field called `name`, or nullptr.
 [[nodiscard]] const pcl::PCLPointField* find_field(const Blob& blob, std::string_view name);
 
+/// The names of the cloud's fields, space-separated ("x y z rgb label"): for pc_info and for
+/// messages about a field that is not there.
+[[nodiscard]] std::string field_names(const Blob& blob);
+
 /// Reads one element of a field as double (any datatype). `p` points at the element.
 [[nodiscard]] double value_as_double(const std::uint8_t* p, std::uint8_t datatype);
 
