@@ -1,6 +1,7 @@
 // Reports that say what they did, for many inputs at once (issue 21): every report carries its
 // input, tool, version and parameters; a failing input gets an error row and exit 1 while the
 // others are reported; the formats (JSON, JSON Lines, CSV, markdown, text, plain) agree.
+#include <filesystem>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -187,6 +188,21 @@ TEST(Reports, PlotsAndTheirNumbersBesideThem) {
     const RunResult again = run_shell("@pc_plot " + dir.file("c.csv") + " -o " + dir.file("d.png"));
     ASSERT_EQ(again.code, 0) << again.err;
     EXPECT_TRUE(slurp(dir.file("d.png")) == slurp(dir.file("c.png")));
+}
+
+TEST(Reports, InstalledToolsRunFromTheirPrefixAndFindPcPlot) {
+    // README: `cmake --install build --prefix ~/.local` puts the tools on PATH.
+    TempDir dir;
+    const std::string build = std::filesystem::path(PC_TOOLS_DIR).parent_path().string();
+    const RunResult install =
+        run_shell("cmake --install '" + build + "' --prefix '" + dir.path + "' >/dev/null");
+    ASSERT_EQ(install.code, 0) << install.err;
+    const RunResult r = run_shell("PATH='" + dir.path + "/bin':/usr/bin:/bin; cd '" + dir.path +
+                                  "' && pc_fruitcount -q --plain -i " + kSamples +
+                                  "fruit_small.ply --plot count.png && pc_info --version");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("pc_info 0."), std::string::npos) << r.out;
+    EXPECT_EQ(slurp(dir.file("count.png")).substr(1, 3), "PNG");  // pc_plot beside it drew it
 }
 
 TEST(Reports, ExtentGoesOnPastAFailingInput) {
