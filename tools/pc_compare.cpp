@@ -11,13 +11,13 @@ namespace pf = pc::features;
 
 namespace {
 
-nlohmann::ordered_json number(double v) {
-    return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
-}
-
 nlohmann::ordered_json stats_json(const pf::DirectionStats& s) {
-    return {{"points", s.points},   {"mean", number(s.mean)}, {"median", number(s.median)},
-            {"rms", number(s.rms)}, {"max", number(s.max)},   {"within_tau", s.within_tau}};
+    return {{"points", s.points},
+            {"mean", pc::cli::json_number(s.mean)},
+            {"median", pc::cli::json_number(s.median)},
+            {"rms", pc::cli::json_number(s.rms)},
+            {"max", pc::cli::json_number(s.max)},
+            {"within_tau", s.within_tau}};
 }
 
 std::string cell(double v) { return std::isfinite(v) ? pc::format_number(v) : ""; }

@@ -1,9 +1,6 @@
 // pc_eval: score a labelled cloud against ground truth (count, recovery, matching, P/R/F1, merges,
 // splits).
 #include <cmath>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <pc/cli/report.h>
 #include <pc/core/error.h>
@@ -19,17 +16,8 @@ namespace {
 
 /// The ground truth of `path` (pc_synth --truth), errors prefixed by the path.
 ev::Truth read_truth(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) {
-        throw pc::IoError(path + ": cannot open the ground truth");
-    }
-    std::stringstream text;
-    text << f.rdbuf();
-    try {
-        return ev::parse_truth(text.str());
-    } catch (const pc::IoError& e) {
-        throw pc::IoError(path + ": " + e.what());
-    }
+    const std::string text = pc::cli::read_text_file(path, "ground truth");
+    return pc::cli::naming(path, [&] { return ev::parse_truth(text); });
 }
 
 }  // namespace
@@ -92,11 +80,9 @@ int main(int argc, char** argv) {
         }
         const ev::Truth truth = truth_path.empty() ? ev::Truth{} : read_truth(truth_path);
         const auto labels = [&](const std::string& field) {
-            try {
+            return pc::cli::naming(input, [&] {
                 return blob.size() ? pc::io::labels(blob, field) : std::vector<std::uint32_t>{};
-            } catch (const pc::IoError& e) {
-                throw pc::IoError(input + ": " + e.what());
-            }
+            });
         };
         const std::vector<std::uint32_t> predicted = labels(label_field);
         std::size_t gt_count = gt ? static_cast<std::size_t>(*gt) : truth.fruit_count;

@@ -60,13 +60,11 @@ int main(int argc, char** argv) {
                 const pc::XyzView& cloud = points.view();
                 r.whole = pc::features::extent(cloud);
                 if (per_label) {
-                    try {
-                        r.clusters = pc::features::extent_per_label(
+                    r.clusters = pc::cli::naming(r.input, [&] {
+                        return pc::features::extent_per_label(
                             cloud, blob.size() ? pc::io::labels(blob, "label")
                                                : std::vector<std::uint32_t>{});
-                    } catch (const pc::IoError& e) {
-                        throw pc::IoError(r.input + ": " + e.what());  // name the input
-                    }
+                    });
                 }
                 for (const auto& w : pc::features::extent_warnings(r)) {
                     io.warn(r.input + ": " + w);

@@ -13,13 +13,11 @@ namespace {
 
 using nlohmann::ordered_json;
 
-ordered_json number(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
+using pc::cli::json_number;
 
-/// As floats: channels come from 8-bit or float colours, more digits would be noise.
+/// Rounded to float: the channels come from 8-bit or float colours.
 ordered_json spread(const pc::filters::Spread& s) {
-    const auto f = [](double v) {
-        return std::isfinite(v) ? ordered_json(static_cast<float>(v)) : ordered_json(nullptr);
-    };
+    const auto f = [](double v) { return json_number(static_cast<float>(v)); };
     return {{"p10", f(s.p10)}, {"median", f(s.median)}, {"p90", f(s.p90)}};
 }
 
@@ -74,7 +72,7 @@ ordered_json to_json(const pc::io::CloudInfo& info, const std::string& fmt) {
             const auto add = [&](const char* key, double pc::io::ElementStats::*member) {
                 ordered_json v = ordered_json::array();
                 for (const auto& s : f.stats) {
-                    v.push_back(number(s.*member));
+                    v.push_back(json_number(s.*member));
                 }
                 jf[key] = one ? v[0] : v;
             };

@@ -289,7 +289,7 @@ int main(int argc, char** argv) {
             for (std::size_t k = 0; k < common.size(); ++k) {
                 Json v = {{"view", common[k]}};
                 for (const auto& [metric, x] : m.views[k]) {
-                    v[metric] = std::isfinite(x) ? Json(x) : Json(nullptr);
+                    v[metric] = pc::cli::json_number(x);
                 }
                 per.push_back(v);
             }
@@ -322,7 +322,7 @@ int main(int argc, char** argv) {
                     const ev::PairedTests t = ev::paired_tests(a, b);
                     paired[metric] = {{"n", t.n},
                                       {"mean_difference", t.mean_difference},
-                                      {"t", std::isfinite(t.t) ? Json(t.t) : Json(nullptr)},
+                                      {"t", pc::cli::json_number(t.t)},
                                       {"p_t", t.t_p},
                                       {"w", t.w},
                                       {"p_w", t.w_p}};

@@ -1,8 +1,4 @@
 // pc_plot: draw a plot's numbers (the CSV that --plot writes beside its PNG) into a PNG.
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include <pc/charts/render.h>
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
@@ -22,14 +18,9 @@ int main(int argc, char** argv) {
             throw pc::InvalidArgument("expected one DATA.csv, got " +
                                       std::to_string(inputs.size()));
         }
-        std::ifstream f(inputs[0], std::ios::binary);
-        if (!f || std::filesystem::is_directory(inputs[0])) {
-            throw pc::IoError(inputs[0] + ": cannot read the plot's numbers");
-        }
-        std::stringstream text;
-        text << f.rdbuf();
+        const std::string text = pc::cli::read_text_file(inputs[0], "plot's numbers");
         const auto panels =
-            pc::cli::naming(inputs[0], [&] { return pc::charts::parse_panels(text.str()); });
+            pc::cli::naming(inputs[0], [&] { return pc::charts::parse_panels(text); });
         const std::vector<std::uint8_t> png = pc::charts::render_png(panels);
         io.write_text(std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
     });

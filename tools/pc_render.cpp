@@ -15,7 +15,6 @@
 #include <pc/cameras/render.h>
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
-#include <pc/core/stats.h>
 #include <pc/filters/color_filter.h>
 #include <pc/filters/colorize.h>
 #include <pc/io/blob.h>

@@ -1,11 +1,7 @@
 // pc_transform: apply an affine transform (matrix, scale, rotation, translation, nerfstudio's
 // dataparser transform), then optionally centre and normalise. Normals rotate with the points.
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <pc/cli/tool.h>
 #include <pc/core/error.h>
@@ -13,21 +9,6 @@
 
 namespace pf = pc::features;
 namespace pl = pc::pipeline;
-
-namespace {
-
-std::string slurp_file(const std::string& path, const std::string& option) {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) {  // a file that is not there is an I/O error (exit 1), as a missing -i is
-        throw pc::IoError(path + ": cannot read the --" + option +
-                          " file: " + std::strerror(errno));
-    }
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
     std::string matrix_text, nerfstudio;
@@ -70,12 +51,15 @@ int main(int argc, char** argv) {
         pf::Matrix4 m = pf::Matrix4::Identity();
         if (!nerfstudio.empty()) {
             // nerfstudio: p_ns = s (T [p; 1]); an export is mapped back with the inverse.
-            m = pf::nerfstudio_forward(slurp_file(nerfstudio, "nerfstudio"), nerfstudio).inverse();
+            m = pf::nerfstudio_forward(pc::cli::read_text_file(nerfstudio, "--nerfstudio file"),
+                                       nerfstudio)
+                    .inverse();
         }
         if (!matrix_text.empty()) {
             const bool is_file = std::filesystem::is_regular_file(matrix_text);
-            m = pf::parse_matrix(is_file ? slurp_file(matrix_text, "matrix") : matrix_text,
-                                 "--matrix") *
+            m = pf::parse_matrix(
+                    is_file ? pc::cli::read_text_file(matrix_text, "--matrix file") : matrix_text,
+                    "--matrix") *
                 m;
         }
         if (!(scale > 0) || !std::isfinite(scale)) {

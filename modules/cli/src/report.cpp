@@ -237,11 +237,9 @@ void Report::each(Streams& io,
             throw;
         } catch (const std::exception& e) {
             // Readers name the file; a step's error may not.
-            std::string what = dynamic_cast<const std::bad_alloc*>(&e) ? "out of memory" : e.what();
-            const std::string name = row["input"].get<std::string>();
-            if (what.rfind(name, 0) != 0) {
-                what = name + ": " + what;
-            }
+            const std::string what =
+                naming_input(row["input"].get<std::string>(),
+                             dynamic_cast<const std::bad_alloc*>(&e) ? "out of memory" : e.what());
             io.fail(what);
             row.erase("parameters");
             row["error"] = what;

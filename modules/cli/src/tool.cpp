@@ -9,6 +9,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <limits>
 #include <mutex>
@@ -170,6 +172,21 @@ private:
 }  // namespace
 
 const char* version() { return PC_VERSION; }
+
+std::string naming_input(const std::string& input, const std::string& what) {
+    return what.rfind(input + ":", 0) == 0 ? what : input + ": " + what;
+}
+
+std::string read_text_file(const std::string& path, const std::string& what) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f || std::filesystem::is_directory(path)) {
+        throw IoError(path + ": cannot read the " + what + ": " +
+                      (f ? std::string("is a directory") : std::strerror(errno)));
+    }
+    std::stringstream text;
+    text << f.rdbuf();
+    return text.str();
+}
 
 double parse_double(const std::string& option, const std::string& text) {
     return parse_number<double>(option, text);
@@ -512,14 +529,12 @@ void Tool::option(const std::string& name, std::string* field, const std::string
 }
 
 void Tool::option(const std::string& name, std::array<double, 3>* field, const std::string& help) {
-    const auto& v = *field;
-    const std::string text = number_text(v[0]) + "," + number_text(v[1]) + "," + number_text(v[2]);
     const auto show = [field] {
         const auto& w = *field;
         return number_text(w[0]) + "," + number_text(w[1]) + "," + number_text(w[2]);
     };
     option(
-        name, text, [field, name](const std::string& s) { *field = parse_triple(name, s); }, help,
+        name, show(), [field, name](const std::string& s) { *field = parse_triple(name, s); }, help,
         show);
 }
 

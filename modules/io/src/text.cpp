@@ -146,6 +146,8 @@ ReadResult parse_text(std::string_view bytes) {
     std::string_view line, header;
     std::vector<double> values;
     std::vector<Column> cols;
+    // per column: a value written with '.', 'e' or 'E' (this row's, then all data rows')
+    std::vector<std::uint8_t> row_fraction, fraction;
     bool header_allowed = true;
     while (cur.next(line)) {
         detail::Tokens toks{line, 0, ',', ';'};
@@ -160,6 +162,7 @@ ReadResult parse_text(std::string_view bytes) {
             continue;
         }
         const std::size_t start = values.size();
+        row_fraction.clear();
         std::size_t got = 0;
         bool numeric = true;
         do {
@@ -168,14 +171,7 @@ ReadResult parse_text(std::string_view bytes) {
                 numeric = false;
                 break;
             }
-            if (!cols.empty() && got < cols.size()) {
-                Column& c = cols[got];
-                c.has_fraction =
-                    c.has_fraction || tok.find_first_of(".eE") != std::string_view::npos;
-                c.integral = c.integral && v == std::floor(v);
-                c.lo = std::min(c.lo, v);
-                c.hi = std::max(c.hi, v);
-            }
+            row_fraction.push_back(tok.find_first_of(".eE") != std::string_view::npos);
             values.push_back(v);
             ++got;
         } while (toks.next(tok));
@@ -190,6 +186,10 @@ ReadResult parse_text(std::string_view bytes) {
                           " is not a number");
         }
         header_allowed = false;
+        fraction.resize(std::max(fraction.size(), row_fraction.size()), 0);
+        for (std::size_t c = 0; c < row_fraction.size(); ++c) {
+            fraction[c] |= row_fraction[c];
+        }
         if (cols.empty()) {
             const auto names = header.empty() ? std::vector<std::string>{} : header_names(header);
             if (names.size() == got) {
@@ -197,17 +197,6 @@ ReadResult parse_text(std::string_view bytes) {
             }
             if (cols.empty()) {
                 cols = default_columns(got, cur.line_number);
-            }
-            for (std::size_t c = 0; c < got; ++c) {  // the first row, seen before cols existed
-                const double v = values[start + c];
-                Column& col = cols[c];
-                col.integral = v == std::floor(v);
-                col.lo = col.hi = v;
-            }
-            // The first row's fractions: its tokens again.
-            detail::Tokens again{line, 0, ',', ';'};
-            for (std::size_t c = 0; again.next(tok) && c < got; ++c) {
-                cols[c].has_fraction = tok.find_first_of(".eE") != std::string_view::npos;
             }
         } else if (got != cols.size()) {
             throw IoError("line " + std::to_string(cur.line_number) + ": expected " +
@@ -221,6 +210,14 @@ ReadResult parse_text(std::string_view bytes) {
     const std::size_t n = values.size() / columns;
     if (n > 0xffffffffu) {
         throw IoError("text input has more than 4294967295 rows");
+    }
+    for (std::size_t c = 0; c < columns; ++c) {  // what the column's values say of its type
+        cols[c].has_fraction = fraction[c] != 0;
+        for (std::size_t i = c; i < values.size(); i += columns) {
+            cols[c].integral = cols[c].integral && values[i] == std::floor(values[i]);
+            cols[c].lo = std::min(cols[c].lo, values[i]);
+            cols[c].hi = std::max(cols[c].hi, values[i]);
+        }
     }
     int colour_channels = 0;
     for (const Column& c : cols) {

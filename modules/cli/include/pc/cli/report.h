@@ -3,6 +3,7 @@
 // which tool and version, and every parameter as used, so that a batch's rows can be matched to
 // their inputs and reproduced. See docs/architecture.md, "Reports".
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -33,6 +34,9 @@ enum class RowFormat {
 [[nodiscard]] std::string format_rows(const std::vector<Row>& rows,
                                       RowFormat format,
                                       const std::string& plain_key = "count");
+
+/// `v` as JSON: the number, or null when it is not finite (JSON has no NaN or infinity).
+[[nodiscard]] inline Row json_number(double v) { return std::isfinite(v) ? Row(v) : Row(nullptr); }
 
 /// What every report starts with: `tool`, `version`, `parameters` (every option of the tool as
 /// used, its report-format flags left out: numbers as numbers, switches as booleans, "off" as

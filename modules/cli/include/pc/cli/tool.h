@@ -66,21 +66,24 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-/// Runs `f` and returns what it returns; a pc::IoError that does not start with `input` gets it
-/// in front ("tree.ply: no field 'opacity'"), so that an algorithm's error names the file as a
-/// reader's does.
+/// `what` with `input` in front ("tree.ply: no field 'opacity'") unless it starts with it, as
+/// a reader's errors do.
+[[nodiscard]] std::string naming_input(const std::string& input, const std::string& what);
+
+/// Runs `f` and returns what it returns; a pc::IoError gets naming_input(input, ...), so that an
+/// algorithm's error names the file as a reader's does.
 template <class F>
 auto naming(const std::string& input, F&& f) -> decltype(f()) {
     try {
         return f();
     } catch (const IoError& e) {
-        const std::string what = e.what();
-        if (what.rfind(input + ":", 0) == 0) {
-            throw;
-        }
-        throw IoError(input + ": " + what);
+        throw IoError(naming_input(input, e.what()));
     }
 }
+
+/// The whole text of a small file (camera, truth, matrix, plot data); pc::IoError
+/// "<path>: cannot read the <what>: <reason>" when it cannot be read (a directory included).
+[[nodiscard]] std::string read_text_file(const std::string& path, const std::string& what);
 
 /// The toolkit's version ("0.1.0"), as --version prints it and reports carry it.
 [[nodiscard]] const char* version();
