@@ -33,15 +33,19 @@ score_scenes() {
   done
 }
 
-# write_generated DOC TITLE BLOCK: replaces the text between the markers of DOC (or creates DOC).
+# write_generated DOC TITLE BLOCK [NAME]: replaces the text between the markers of DOC (or creates
+# DOC); NAME tells a page's blocks apart (<!-- BEGIN generated NAME -->).
 write_generated() {
-  local doc=$1 title=$2 text=$3 block
-  block=$(printf '<!-- BEGIN generated -->\n%s\n<!-- END generated -->' "$text")
-  if [ -f "$doc" ] && grep -q '<!-- BEGIN generated' "$doc"; then
-    awk -v block="$block" '
-      /<!-- BEGIN generated/ { print block; skip = 1; next }
-      /<!-- END generated/ { skip = 0; next }
+  local doc=$1 title=$2 text=$3 name=${4:+ $4} block
+  local begin="<!-- BEGIN generated$name -->" end="<!-- END generated$name -->"
+  block=$(printf '%s\n%s\n%s' "$begin" "$text" "$end")
+  if [ -f "$doc" ] && grep -qF "$begin" "$doc"; then
+    awk -v block="$block" -v begin="$begin" -v end="$end" '
+      $0 == begin { print block; skip = 1; next }
+      $0 == end { skip = 0; next }
       !skip { print }' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+  elif [ -f "$doc" ]; then
+    printf '\n%s\n' "$block" >>"$doc"
   else
     printf '# %s\n\n%s\n' "$title" "$block" >"$doc"
   fi

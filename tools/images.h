@@ -70,4 +70,24 @@ inline std::vector<std::uint8_t> binary_mask(const cv::Mat& m, const std::string
     return out;
 }
 
+/// The ids of a one-channel 8- or 16-bit instance mask (0: no fruit), row-major; pc::IoError
+/// naming the file for several channels or a JPEG (compression changes ids).
+inline std::vector<std::uint32_t> instance_ids(const cv::Mat& m, const std::string& path) {
+    if (m.channels() != 1) {
+        throw IoError(path + ": instance masks must have one channel");
+    }
+    if (is_jpeg(path)) {
+        throw IoError(path + ": instance masks must be PNG (JPEG compression changes the ids)");
+    }
+    std::vector<std::uint32_t> out;
+    out.reserve(static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.cols));
+    for (int y = 0; y < m.rows; ++y) {
+        for (int x = 0; x < m.cols; ++x) {
+            out.push_back(m.depth() == CV_8U ? m.ptr<std::uint8_t>(y)[x]
+                                             : m.ptr<std::uint16_t>(y)[x]);
+        }
+    }
+    return out;
+}
+
 }  // namespace pc::tools

@@ -19,9 +19,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-cam::Mask read_mask(const std::string& path) {
+/// A binary mask (FruitNeRF's rules) or, with `instances`, a PNG of instance ids.
+cam::Mask read_mask(const std::string& path, bool instances) {
     const cv::Mat m = pc::tools::read_image(path);
-    return {m.cols, m.rows, pc::tools::binary_mask(m, path)};
+    cam::Mask out{m.cols, m.rows, {}};
+    if (instances) {
+        const std::vector<std::uint32_t> ids = pc::tools::instance_ids(m, path);
+        out.id.assign(ids.begin(), ids.end());  // one channel of at most 16 bits
+    } else {
+        const std::vector<std::uint8_t> fruit = pc::tools::binary_mask(m, path);
+        out.id.assign(fruit.begin(), fruit.end());
+    }
+    return out;
 }
 
 /// The mask file of a view: DIR/<stem of its image>.png|.jpg|.jpeg with --masks DIR, else the
@@ -65,6 +74,9 @@ int main(int argc, char** argv) {
                 "mask_path or semantic_path");
     tool.option("min-ratio", &p.min_ratio, "fruit iff votes / views >= this");
     tool.option("min-views", &p.min_views, "... and at least this many views see the point");
+    tool.flag("instances", &p.instances,
+              "the masks are instance ids (PNG, one channel, 8 or 16 bits, 0 = no fruit): also "
+              "join each view's instances into 3D fruit, written as field label (0 = not fruit)");
     tool.option("spacing", &spacing,
                 "point spacing in cloud units (splat size, depth tolerance); 0: the median "
                 "nearest-neighbour distance");
@@ -80,6 +92,7 @@ int main(int argc, char** argv) {
                 "trains and exports in (ns-export); the cameras are moved into it");
     tool.epilog(
         "\nMasks: JPEG fruit where > 125, PNG where not 0 (binary or instance ids).\n"
+        "With --instances: pc_count counts the labels, pc_eval scores them.\n"
         "See docs/tools/pc_lift.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         if (cameras_path.empty()) {
@@ -130,7 +143,8 @@ int main(int argc, char** argv) {
                 " views");
         std::size_t step = std::max<std::size_t>(1, ds.views.size() / 10);
         const cam::LiftResult r = cam::lift(
-            points.view(), ds.views, [&](std::size_t k) { return read_mask(masks[k]); }, spacing, p,
+            points.view(), ds.views,
+            [&](std::size_t k) { return read_mask(masks[k], p.instances); }, spacing, p,
             [&](std::size_t done, std::size_t total) {
                 if (done % step == 0 || done == total) {
                     io.note("view " + std::to_string(done) + " of " + std::to_string(total));
@@ -155,6 +169,17 @@ int main(int argc, char** argv) {
         pc::io::set_field(blob, "views", r.views);
         pc::io::set_field(blob, "votes", r.votes);
         pc::io::set_field(blob, "fruit", flag);
+        if (p.instances) {
+            const std::uint32_t n =
+                r.label.empty() ? 0 : *std::max_element(r.label.begin(), r.label.end());
+            io.note(std::to_string(n) + " instances");
+            if (n == 1 && fruit > 0 && ds.views.size() > 1) {
+                io.warn(
+                    "every fruit point joined into one instance: do the masks hold an id per "
+                    "fruit, or are they binary?");
+            }
+            pc::io::set_field(blob, "label", r.label);
+        }
         io.write(blob);
     });
 }

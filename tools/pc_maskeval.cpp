@@ -51,11 +51,14 @@ std::map<std::string, std::string> images_in(const std::string& dir) {
 
 enum class Kind { kBinary, kInstance, kImage };
 
-/// auto: colour ground truth -> images; 16-bit or more than two grey levels -> instance ids;
-/// else binary masks.
-Kind kind_of(const cv::Mat& truth) {
+/// auto: colour ground truth -> images; a grey JPEG -> binary (compression blurs 0/255 into many
+/// levels); 16-bit or more than two grey levels -> instance ids; else binary masks.
+Kind kind_of(const cv::Mat& truth, const std::string& path) {
     if (truth.channels() >= 3) {
         return Kind::kImage;
+    }
+    if (pc::tools::is_jpeg(path)) {
+        return Kind::kBinary;
     }
     if (truth.depth() == CV_16U) {
         return Kind::kInstance;
@@ -67,21 +70,6 @@ Kind kind_of(const cv::Mat& truth) {
         }
     }
     return levels.size() > 2 ? Kind::kInstance : Kind::kBinary;
-}
-
-std::vector<std::uint32_t> ids(const cv::Mat& m, const std::string& path) {
-    if (m.channels() != 1) {
-        throw pc::IoError(path + ": instance masks must have one channel");
-    }
-    std::vector<std::uint32_t> out;
-    out.reserve(static_cast<std::size_t>(m.rows) * static_cast<std::size_t>(m.cols));
-    for (int y = 0; y < m.rows; ++y) {
-        for (int x = 0; x < m.cols; ++x) {
-            out.push_back(m.depth() == CV_8U ? m.ptr<std::uint8_t>(y)[x]
-                                             : m.ptr<std::uint16_t>(y)[x]);
-        }
-    }
-    return out;
 }
 
 std::vector<std::uint8_t> samples(const cv::Mat& m, const std::string& path) {
@@ -110,8 +98,8 @@ std::map<std::string, double> score(Kind kind,
                 {"iou", s.iou}, {"dice", s.dice}, {"precision", s.precision}, {"recall", s.recall}};
         }
         case Kind::kInstance: {
-            const ev::InstanceMaskScores s =
-                ev::instance_mask_scores(ids(p, pred_path), ids(t, truth_path));
+            const ev::InstanceMaskScores s = ev::instance_mask_scores(
+                pc::tools::instance_ids(p, pred_path), pc::tools::instance_ids(t, truth_path));
             return {{"precision", s.precision},
                     {"recall", s.recall},
                     {"f1", s.f1},
@@ -234,11 +222,12 @@ int main(int argc, char** argv) {
                                " and are left out (first: " + missing.front() + ")");
             io.warn(warnings.back());
         }
-        const Kind kind = kind_name == "binary"     ? Kind::kBinary
-                          : kind_name == "instance" ? Kind::kInstance
-                          : kind_name == "image"
-                              ? Kind::kImage
-                              : kind_of(pc::tools::read_image(truth.at(common[0])));
+        const Kind kind =
+            kind_name == "binary"     ? Kind::kBinary
+            : kind_name == "instance" ? Kind::kInstance
+            : kind_name == "image"
+                ? Kind::kImage
+                : kind_of(pc::tools::read_image(truth.at(common[0])), truth.at(common[0]));
         const char* kind_word = kind == Kind::kBinary     ? "binary"
                                 : kind == Kind::kInstance ? "instance"
                                                           : "image";

@@ -80,6 +80,11 @@ TEST(PcMaskeval, JpegInstancesAndImages) {
     RunResult r = run_shell("@pc_maskeval " + d.path + "/jp " + d.path + "/gt");
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NEAR(nlohmann::json::parse(r.out)["method"]["views"][0]["iou"].get<double>(), 1, 0.02);
+    // JPEG ground truth too: compression blurs its edges into many grey levels, which must not
+    // make it read as instance ids
+    r = run_shell("@pc_maskeval " + d.path + "/jp " + d.path + "/jp");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(nlohmann::json::parse(r.out)["kind"], "binary");
 
     // 16-bit instance ids: two fruit, one found exactly, one missed
     cv::Mat it = square(0, 300, CV_16UC1), ip = square(0, 7, CV_16UC1);

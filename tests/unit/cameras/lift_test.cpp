@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -27,8 +29,9 @@ View look_at(const Eigen::Vector3d& eye) {
                             2 * std::atan(240.0 / 600));
 }
 
-/// 1 where the pixel's ray meets a sphere before the plane z = 0.
-Mask ray_cast(const View& v) {
+/// Where the pixel's ray first meets a sphere of `centres` before the plane z = 0: 1 + that
+/// sphere's index, else 0.
+Mask ray_cast(const View& v, const std::vector<Eigen::Vector3d>& centres = kCentres) {
     Mask m{v.camera.width, v.camera.height, {}};
     const Eigen::Vector3d o = v.centre();
     for (int y = 0; y < m.height; ++y) {
@@ -38,44 +41,65 @@ Mask ray_cast(const View& v) {
                                                           (y + 0.5 - v.camera.cy) / v.camera.fy, 1))
                     .normalized();
             const double plane = d.z() < 0 ? -o.z() / d.z() : std::numeric_limits<double>::max();
-            bool fruit = false;
-            for (const Eigen::Vector3d& c : kCentres) {
+            double nearest = plane;
+            std::uint16_t id = 0;
+            for (std::size_t k = 0; k < centres.size(); ++k) {
+                const Eigen::Vector3d& c = centres[k];
                 const double b = d.dot(o - c),
                              disc = b * b - ((o - c).squaredNorm() - kRadius * kRadius);
-                fruit = fruit ||
-                        (disc >= 0 && -b - std::sqrt(disc) > 0 && -b - std::sqrt(disc) < plane);
+                const double t = disc >= 0 ? -b - std::sqrt(disc) : -1;
+                if (t > 0 && t < nearest) {
+                    nearest = t;
+                    id = static_cast<std::uint16_t>(k + 1);
+                }
             }
-            m.fruit.push_back(fruit ? 1 : 0);
+            m.id.push_back(id);
         }
     }
     return m;
 }
 
-TEST(Lift, EveryPointSeenIsFruitExactlyWhenItLiesOnAFruit) {
-    Cloud c;
-    std::vector<bool> truth;
+/// The ground plane z = 0 (id 0) and the spheres' surfaces (id 1 + the sphere's index), points
+/// kSpacing apart.
+void scene(const std::vector<Eigen::Vector3d>& centres, Cloud& c, std::vector<std::uint32_t>& id) {
     for (double x = -0.8; x <= 0.8; x += kSpacing) {
         for (double y = -0.8; y <= 0.8; y += kSpacing) {
             c.push_back({static_cast<float>(x), static_cast<float>(y), 0});
-            truth.push_back(false);
+            id.push_back(0);
         }
     }
     const auto n = static_cast<int>(4 * kPi * kRadius * kRadius / (kSpacing * kSpacing));
-    for (const Eigen::Vector3d& centre : kCentres) {
+    for (std::size_t k = 0; k < centres.size(); ++k) {
         for (int i = 0; i < n; ++i) {
             const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
             const Eigen::Vector3d p =
-                centre + kRadius * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
+                centres[k] + kRadius * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
             c.push_back(
                 {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
-            truth.push_back(true);
+            id.push_back(static_cast<std::uint32_t>(k + 1));
         }
     }
+}
+
+/// A camera from the top and eight around at 45 degrees elevation.
+std::vector<View> nine_views() {
     std::vector<View> views{look_at({0.01, 0.02, 2.5})};
     for (int k = 0; k < 8; ++k) {
         const double a = 2 * kPi * k / 8;
         views.push_back(look_at({2 * std::cos(a), 2 * std::sin(a), 1.2}));
     }
+    return views;
+}
+
+TEST(Lift, EveryPointSeenIsFruitExactlyWhenItLiesOnAFruit) {
+    Cloud c;
+    std::vector<std::uint32_t> id;
+    scene(kCentres, c, id);
+    std::vector<bool> truth;
+    for (const std::uint32_t i : id) {
+        truth.push_back(i != 0);
+    }
+    const std::vector<View> views = nine_views();
     std::vector<Mask> masks;
     for (const View& v : views) {
         masks.push_back(ray_cast(v));
@@ -129,12 +153,61 @@ TEST(Lift, EveryPointSeenIsFruitExactlyWhenItLiesOnAFruit) {
     EXPECT_GT(open, 1000u);
 }
 
+TEST(Lift, InstanceMasksTellTouchingFruitApart) {
+    // Three spheres touching in a bunch (centres 2R apart) and one alone; the masks give each
+    // sphere its own id in every view (ray-cast, independent of the z-buffer). Every sphere must
+    // come out as one label of its own; the few points at a contact may go to the neighbour.
+    const std::vector<Eigen::Vector3d> centres = {{0, 0, 0.15},
+                                                  {2 * kRadius, 0, 0.15},
+                                                  {kRadius, std::sqrt(3.0) * kRadius, 0.15},
+                                                  {-0.4, -0.3, 0.15}};
+    Cloud c;
+    std::vector<std::uint32_t> id;
+    scene(centres, c, id);
+    const std::vector<View> views = nine_views();
+    std::vector<Mask> masks;
+    for (const View& v : views) {
+        masks.push_back(ray_cast(v, centres));
+    }
+    const LiftResult r = lift(XyzView(c), views, [&](std::size_t k) { return masks[k]; }, kSpacing,
+                              {.instances = true});
+    ASSERT_EQ(r.label.size(), c.size());
+    // per sphere, how many of its lifted points carry each label
+    std::vector<std::map<std::uint32_t, std::size_t>> labels(centres.size() + 1);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+        EXPECT_EQ(r.label[i] != 0, r.fruit[i] != 0) << i;
+        if (r.label[i] != 0) {
+            ++labels[id[i]][r.label[i]];
+        }
+    }
+    EXPECT_TRUE(labels[0].empty());  // no ground point is fruit
+    std::set<std::uint32_t> majority;
+    for (std::size_t k = 1; k <= centres.size(); ++k) {
+        std::size_t total = 0, best = 0;
+        std::uint32_t best_label = 0;
+        for (const auto& [label, n] : labels[k]) {
+            total += n;
+            if (n > best) {
+                best = n;
+                best_label = label;
+            }
+        }
+        EXPECT_GT(total, 300u) << k;
+        EXPECT_GE(best, total * 98 / 100) << k;
+        majority.insert(best_label);
+    }
+    EXPECT_EQ(majority.size(), centres.size());
+    EXPECT_EQ(*majority.rbegin(), centres.size());  // no other label: 1 .. 4
+    EXPECT_TRUE(lift(XyzView(c), views, [&](std::size_t k) { return masks[k]; }, kSpacing, {})
+                    .label.empty());
+}
+
 TEST(Lift, AMaskOfAnotherSizeOrAFailingMaskIsAnErrorNamingTheView) {
     Cloud c;
     c.push_back({0, 0, 0});
     View v = look_at({0, 0.01, 2});
     v.image = "images/a.png";
-    const auto bad = [&](std::size_t) { return Mask{10, 10, std::vector<std::uint8_t>(100, 0)}; };
+    const auto bad = [&](std::size_t) { return Mask{10, 10, std::vector<std::uint16_t>(100, 0)}; };
     try {
         (void)lift(XyzView(c), {v}, bad, 0.01, {});
         FAIL();
