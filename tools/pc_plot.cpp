@@ -8,7 +8,7 @@ int main(int argc, char** argv) {
     pc::cli::Tool tool("pc_plot",
                        "draw a plot's CSV (panel,kind,xlabel,name,value: what --plot writes "
                        "beside its PNG) into a PNG: histograms, box plots, bars side by side",
-                       pc::cli::Output::kText);
+                       pc::cli::Output::kImage);
     tool.no_input();
     tool.inputs(&inputs, "DATA.csv", 1);
     tool.epilog(

@@ -71,7 +71,7 @@ int main(int argc, char** argv) {
                        "draw the cloud into a PNG: a dataset camera (--cameras, --frame) or "
                        "standard views side by side; colour by rgb, label or any field; or a "
                        "label mask (--mask) for pc_maskeval",
-                       pc::cli::Output::kText);
+                       pc::cli::Output::kImage);
     tool.option("cameras", &cameras_path,
                 "transforms.json or COLMAP model: draw from its camera --frame, at its size");
     tool.option("frame", &frame, "the camera's index in the camera file (0 = first)");

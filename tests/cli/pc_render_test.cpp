@@ -71,5 +71,16 @@ TEST(PcRender, BadRequestsFailWithOneLine) {
     }
 }
 
+TEST(PcRender, AnImageIsNeverWrittenToATerminal) {
+    // util-linux's script(1) gives the tool a terminal for its stdout (and stderr)
+    if (run_shell("command -v script > /dev/null").code != 0) {
+        GTEST_SKIP() << "script(1) is not installed";
+    }
+    const RunResult r = run_shell("script -qec '@pc_render -i " + kViews + "/cloud.pcd' /dev/null");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("refusing to write an image to a terminal"), std::string::npos) << r.out;
+    EXPECT_LT(r.out.size(), 300u);  // one line, no PNG bytes
+}
+
 }  // namespace
 }  // namespace pc::test

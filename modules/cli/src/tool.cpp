@@ -382,7 +382,8 @@ po::options_description Tool::Impl::common_options(Streams& io) const {
     common.add_options()("output,o", po::value<std::string>(&io.output_)->default_value("-"),
                          cloud_out ? "output cloud ('-' = stdout); a file is written to a "
                                      "temporary file and renamed, a device or FIFO directly"
-                                   : "output report ('-' = stdout)");
+                         : output == Output::kImage ? "output image ('-' = stdout)"
+                                                    : "output report ('-' = stdout)");
     if (reads) {
         common.add_options()(
             "max-input-bytes",
@@ -452,6 +453,10 @@ void Tool::Impl::check_output(const Streams& io) const {
                 "refusing to write a binary cloud to a terminal; use -o FILE, "
                 "a pipe, or --format ascii");
         }
+    }
+    if (output == Output::kImage && io.output_ == "-" && ::isatty(1)) {
+        throw InvalidArgument(
+            "refusing to write an image to a terminal; use -o FILE.png or a pipe");
     }
 }
 

@@ -62,6 +62,25 @@ TEST(JoinInstances, AViewThatSeesTwoFruitAsOneCannotJoinThem) {
     EXPECT_EQ(labels_of(l, kPer + 5, 2 * kPer), std::set<std::uint32_t>{2});
 }
 
+TEST(JoinInstances, MostViewsSeeingTwoFruitAsOneAreOutvotedByTheViewsThatSeeThemApart) {
+    // Views 0, 1 and 2 see X and Y as one instance, views 3 and 4 apart (X: 1, Y: 2): two
+    // against three, and yet every view that separates them is right.
+    std::vector<Sighting> s;
+    for (std::uint32_t i = 0; i < 2 * kPer; ++i) {
+        for (std::uint32_t v = 0; v < 3; ++v) {
+            s.push_back({i, v, 9});
+        }
+        for (std::uint32_t v = 3; v < 5; ++v) {
+            s.push_back({i, v, i < kPer ? 1u : 2u});
+        }
+    }
+    const std::vector<std::uint32_t> l =
+        join_instances(s, std::vector<std::uint8_t>(2 * kPer, 1), {});
+    EXPECT_EQ(labels_of(l, 0, kPer).size(), 1u);
+    EXPECT_EQ(labels_of(l, kPer, 2 * kPer).size(), 1u);
+    EXPECT_NE(l[0], l[kPer]);
+}
+
 TEST(JoinInstances, BinaryMasksJoinEverythingOneViewSeesAsFruit) {
     // one instance per view: nothing tells X from Y
     std::vector<Sighting> s = touching();

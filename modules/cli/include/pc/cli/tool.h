@@ -21,8 +21,9 @@ inline constexpr int kOk = 0;       ///< success
 inline constexpr int kFailure = 1;  ///< bad data, I/O, algorithm failure
 inline constexpr int kUsage = 2;    ///< unknown option, bad value, validate() said no
 
-/// What a tool writes to its output: a cloud (PCD or PLY) or a text report.
-enum class Output { kCloud, kText };
+/// What a tool writes to its output: a cloud (PCD or PLY), a text report, or an image (bytes
+/// written with write_text, never to a terminal).
+enum class Output { kCloud, kText, kImage };
 
 /// The standard streams of one run, as chosen by -i/-o. Created by Tool::run.
 class Streams {
