@@ -139,7 +139,29 @@ TEST(PcFruitcount, DefaultCountsSamplingKindsColoursAndUnits) {
         const auto j = nlohmann::json::parse(e.out);
         EXPECT_NEAR(std::stoi(r.out), present, 0.1 * present) << scene;
         EXPECT_GE(j["f1"].get<double>(), 0.9) << scene;
+        EXPECT_EQ(r.err.find("bunch's"), std::string::npos) << scene << ": " << r.err;
     }
+}
+
+TEST(PcFruitcount, BunchesCountedAsOneFruitEachAreAWarning) {
+    // Grape-like bunches of 6-12 berries 9 mm in radius sampled at random in their volume, 2
+    // points to a radius: each bunch reads as one solid fruit of 3-5 cm (14 of 80 counted). The
+    // bunches hold about a tenth of the points a solid ball of that radius would: a warning.
+    const RunResult r = run_shell(
+        "@pc_synth --species plum --fruit-count 80 --fruit-radius 0.009 --bunch-min 6 "
+        "--bunch-max 12 --overlap 0.1 --canopy 0.45,0.45,0.4 --mode volume --voxel 0.0045 | "
+        "@pc_fruitcount");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_LT(j["count"].get<int>(), 40);
+    bool warned = false;
+    for (const auto& w : j["warnings"]) {
+        warned =
+            warned || w.get<std::string>().find("the radius may be a bunch's") != std::string::npos;
+    }
+    EXPECT_TRUE(warned) << j["warnings"];
+    EXPECT_NE(r.err.find("give --fruit-radius"), std::string::npos) << r.err;
+    EXPECT_EQ(j["steps"][3]["rule"], "solid fruit: their outer layer voted") << j["steps"];
 }
 
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.

@@ -218,6 +218,28 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
     return step;
 }
 
+/// A ball of radius R filled with points at median nearest-neighbour spacing s holds about
+/// kSolidBallPoints (R/s)³ of them at the least: a Poisson process has a median nearest-neighbour
+/// distance of 0.549 ρ^(-1/3), so ρ = 0.165 / s³ and the ball 4.19 × 0.165 (R/s)³; a lattice
+/// (ρ = 1 / s³) holds 4.19 (R/s)³.
+constexpr double kSolidBallPoints = 0.69;
+/// Solid fruit whose median cluster holds under this share of that are not balls of radius R.
+/// Measured over the 540 scored scenes of the condition matrix (docs/robustness.md): solid ones
+/// counted right hold 0.32 (random in the volume, the least) to 4.1 (R/s)³ (lattices), the
+/// random-volume bunches at 2 spacings a radius counted as one fruit each 0.04-0.16.
+constexpr double kTooFewForABall = 0.25 / kSolidBallPoints;
+
+/// The median point count of clusters 1..count (0 when there are none).
+double median_cluster_points(const io::Blob& labelled, std::uint32_t count) {
+    std::vector<double> points(count, 0.0);
+    for (const std::uint32_t l : io::labels(labelled, "label")) {
+        if (l >= 1 && l <= count) {
+            ++points[l - 1];
+        }
+    }
+    return points.empty() ? 0.0 : median(points);
+}
+
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
     segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
@@ -243,6 +265,20 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
               {}};
     if (spheres) {
         step.record.values = {{"spacing", r.spacing}, {"fruit_radius", r.fruit_radius}};
+        step.record.rule = r.solid ? "solid fruit: their outer layer voted" : "fruit surfaces";
+        const double expected = kSolidBallPoints * std::pow(r.fruit_radius / r.spacing, 3);
+        const double typical = median_cluster_points(step.blob, r.cluster_count);
+        if (r.solid && r.peaks > 0 && r.fruit_radius > 0 && r.spacing > 0 &&
+            typical < kTooFewForABall * expected) {
+            step.warnings.push_back(
+                "the median fruit holds " + format_number(typical) +
+                " points, far fewer than a "
+                "solid ball of the fruit radius " +
+                format_number(r.fruit_radius) + " at spacing " + format_number(r.spacing) +
+                " would (about " + format_number(std::round(expected)) +
+                "): the radius may be a bunch's, each bunch counted as one fruit; give "
+                "--fruit-radius if you know the fruit's size");
+        }
         if (r.cluster_count > 0 && !(r.fruit_radius > 0)) {
             step.warnings.push_back(
                 "recursive_split could not estimate the fruit radius (spacing " +

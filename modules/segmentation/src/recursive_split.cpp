@@ -135,6 +135,7 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     r.spacing = v.spacing;
     r.fruit_radius = v.fruit_radius;
     r.peaks = v.peaks;
+    r.solid = v.solid;
     return r;
 }
 

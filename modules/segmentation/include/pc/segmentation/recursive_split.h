@@ -55,6 +55,7 @@ struct RecursiveSplitResult {
     double spacing = 0;           ///< cores rule: median nearest-neighbour distance
     double fruit_radius = 0;      ///< cores and spheres rules: the fruit radius used
     std::uint32_t peaks = 0;      ///< spheres rule: fruit centres found
+    bool solid = false;           ///< spheres rule: solid fruit (their outer layer voted)
     double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
 };
 
