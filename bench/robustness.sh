@@ -77,7 +77,8 @@ fi
 table=$(awk -F, -v first="${methods%% *}" '
   NR == 1 { next }
   function add(key) { n[key]++; f[key] += $12; e = $13 < 0 ? -$13 : $13; ae[key] += e
-                      if (e > 0.2) off[key]++; if ($11 <= 0) zero[key]++; t[key] += $14
+                      if (e > 0.2) off[key]++; if (e > 0.2 && $15 == 0) silent[key]++
+                      if ($11 <= 0) zero[key]++; t[key] += $14
                       if (!(key in worst) || $12 < worst[key]) worst[key] = $12 }
   function rank(part) { return part == "tune" ? 0 : part == "held-out" ? 1 : 1 + substr(part, 10) }
   function sorted(prefix, out,   k, m, i, j, x) {
@@ -88,12 +89,12 @@ table=$(awk -F, -v first="${methods%% *}" '
     if ($9 == first) { add("C|family " $3 "|" $2); add("C|mode " $4 "|" $2); add("C|r/s " sprintf("%02d", $5) "|" $2)
                        add("C|noise " $6 "|" $2); add("C|colour " $7 "|" $2); add("C|units " $8 "|" $2) } }
   END {
-    print "| Method | Part | Scenes | Mean F1 | Worst F1 | Mean abs count error | Off > 20 % | Zero counts | Mean s |"
-    print "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    print "| Method | Part | Scenes | Mean F1 | Worst F1 | Mean abs count error | Off > 20 % | ... with no warning | Zero counts | Mean s |"
+    print "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
     m = sorted("M|", K)
     for (i = 1; i <= m; i++) { split(K[i], p, "|")
-      printf "| %s | %s | %d | %.3f | %.3f | %.1f%% | %d | %d | %.2f |\n", p[2], p[3], n[K[i]], f[K[i]] / n[K[i]], worst[K[i]],
-        100 * ae[K[i]] / n[K[i]], off[K[i]], zero[K[i]], t[K[i]] / n[K[i]] }
+      printf "| %s | %s | %d | %.3f | %.3f | %.1f%% | %d | %d | %d | %.2f |\n", p[2], p[3], n[K[i]], f[K[i]] / n[K[i]], worst[K[i]],
+        100 * ae[K[i]] / n[K[i]], off[K[i]], silent[K[i]], zero[K[i]], t[K[i]] / n[K[i]] }
     print ""
     np = 0; for (k in n) { split(k, p, "|"); if (!(p[3] in seen) && p[3] != "all") { seen[p[3]] = 1; parts[++np] = p[3] } }
     for (i = 1; i <= np; i++) for (j = i + 1; j <= np; j++) if (rank(parts[j]) < rank(parts[i])) { x = parts[i]; parts[i] = parts[j]; parts[j] = x }

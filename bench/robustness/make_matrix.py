@@ -84,6 +84,11 @@ LATER_PARTS = [
     ('held-out-5', 2030, 'olive', (0.008, '--species plum --fruit-radius 0.008 --bunch-min 3 '
      '--bunch-max 8 --touch-gap 0.0005 --fruit-count 200 --canopy 0.5,0.5,0.4'),
      'pale', (225, 215, 170)),
+    # 6 (session 21): kiwi-like, 28 mm, rows of 1-4 touching, up to 5 % interpenetrating; dark
+    # blue fruit
+    ('held-out-6', 2031, 'kiwi', (0.028, '--species apple --fruit-radius 0.028 --bunch-min 1 '
+     '--bunch-max 4 --touch-gap 0.001 --overlap 0.05 --fruit-count 90 --canopy 0.7,0.7,0.5'),
+     'dark-blue', (45, 50, 120)),
 ]
 families, colours, first = dict(FAMILIES), dict(COLOURS), 241
 for part, seed, family, spec, colour, rgb in LATER_PARTS:
