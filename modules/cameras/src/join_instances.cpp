@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <iterator>
 #include <numeric>
 #include <string>
 #include <unordered_map>
@@ -17,14 +18,15 @@ void JoinParams::validate() const {
 
 namespace {
 
-/// Groups of nodes with the views they hold: a union-find whose roots keep a bit per view.
+/// Groups of nodes with the views they hold: a union-find whose roots keep their views sorted
+/// (memory one entry a node, whatever the number of views).
 class Groups {
 public:
-    Groups(const std::vector<std::uint32_t>& view_of, std::size_t views)
-        : parent_(view_of.size()), words_((views + 63) / 64), bits_(view_of.size() * words_, 0) {
+    explicit Groups(const std::vector<std::uint32_t>& view_of)
+        : parent_(view_of.size()), views_(view_of.size()) {
         std::iota(parent_.begin(), parent_.end(), 0u);
         for (std::size_t n = 0; n < view_of.size(); ++n) {
-            bits_[n * words_ + view_of[n] / 64] |= std::uint64_t{1} << (view_of[n] % 64);
+            views_[n] = {view_of[n]};
         }
     }
 
@@ -43,28 +45,30 @@ public:
         if (a == b) {
             return true;
         }
-        std::uint64_t* wa = bits_.data() + a * words_;
-        std::uint64_t* wb = bits_.data() + b * words_;
-        for (std::size_t w = 0; w < words_; ++w) {
-            if ((wa[w] & wb[w]) != 0) {
+        const std::vector<std::uint32_t>& small =
+            views_[a].size() < views_[b].size() ? views_[a] : views_[b];
+        const std::vector<std::uint32_t>& large = &small == &views_[a] ? views_[b] : views_[a];
+        for (const std::uint32_t v : small) {
+            if (std::binary_search(large.begin(), large.end(), v)) {
                 return false;
             }
         }
         if (b < a) {
             std::swap(a, b);
-            std::swap(wa, wb);
         }
-        for (std::size_t w = 0; w < words_; ++w) {
-            wa[w] |= wb[w];
-        }
+        std::vector<std::uint32_t> joined;
+        joined.reserve(views_[a].size() + views_[b].size());
+        std::merge(views_[a].begin(), views_[a].end(), views_[b].begin(), views_[b].end(),
+                   std::back_inserter(joined));
+        views_[a] = std::move(joined);
+        views_[b] = {};
         parent_[b] = a;
         return true;
     }
 
 private:
     std::vector<std::uint32_t> parent_;
-    std::size_t words_;
-    std::vector<std::uint64_t> bits_;
+    std::vector<std::vector<std::uint32_t>> views_;
 };
 
 constexpr std::uint32_t kNone = 0xffffffffu;
@@ -260,8 +264,7 @@ std::vector<std::uint32_t> join_instances(
     });
     std::stable_sort(links.begin(), links.end(),
                      [](const Link& a, const Link& b) { return a.strength > b.strength; });
-    Groups groups(view_of,
-                  view_of.empty() ? 0 : *std::max_element(view_of.begin(), view_of.end()) + 1);
+    Groups groups(view_of);
     for (const Link& l : links) {
         groups.join(static_cast<std::uint32_t>(l.pair >> 32),
                     static_cast<std::uint32_t>(l.pair & 0xffffffffu));
