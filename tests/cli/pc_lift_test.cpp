@@ -131,6 +131,7 @@ TEST(PcLift, InstanceMasksCountBunchesTheGeometricSplitCannot) {
                                   " --instances -v -o " + d.file("lifted.pcd"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NE(r.err.find(" instances"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
     const RunResult e = run_shell("@pc_eval -i " + d.file("lifted.pcd"));
     ASSERT_EQ(e.code, 0) << e.err;
     const auto score = nlohmann::json::parse(e.out);
@@ -161,6 +162,35 @@ TEST(PcLift, InstanceMasksCountBunchesTheGeometricSplitCannot) {
     EXPECT_EQ(j.code, 1);
     EXPECT_NE(j.err.find("instance masks must be PNG"), std::string::npos) << j.err;
     EXPECT_FALSE(std::ifstream(d.file("j.pcd")).good());
+}
+
+TEST(PcLift, InstanceMasksThatDisagreeAcrossViewsAreAWarning) {
+    // The sample's three fruit drawn as instance masks from their ids (gt = 1..3): no warning.
+    // Five of the eight views replaced by the sample's binary masks (one instance holding every
+    // fruit): a third of the fruit points are seen only by such views, a warning.
+    TempDir d;
+    for (const char* sub : {"ids", "mixed"}) {
+        std::filesystem::create_directory(d.file(sub));
+    }
+    for (int k = 0; k < 8; ++k) {
+        const std::string name = "frame_0" + std::to_string(k) + ".png";
+        ASSERT_EQ(run_shell("@pc_render -i " + kViews + "/cloud.pcd --cameras " + kViews +
+                            "/transforms.json --frame " + std::to_string(k) + " --mask gt -o " +
+                            d.file("ids/" + name))
+                      .code,
+                  0);
+        std::filesystem::copy_file(k < 3 ? d.file("ids/" + name) : kViews + "/masks/" + name,
+                                   d.file("mixed/" + name));
+    }
+    const std::string lift =
+        "@pc_lift -i " + kViews + "/cloud.pcd --cameras " + kViews + "/transforms.json --instances";
+    const RunResult good = run_shell(lift + " --masks " + d.file("ids") + " | @pc_count --plain");
+    ASSERT_EQ(good.code, 0) << good.err;
+    EXPECT_EQ(good.out, "3\n");
+    EXPECT_TRUE(good.err.empty()) << good.err;
+    const RunResult mixed = run_shell(lift + " --masks " + d.file("mixed") + " > /dev/null");
+    ASSERT_EQ(mixed.code, 0) << mixed.err;
+    EXPECT_NE(mixed.err.find("fruit points have a doubtful label"), std::string::npos) << mixed.err;
 }
 
 TEST(PcLift, BadCameraAndMaskFilesFailWithOneLineAndNoOutput) {

@@ -175,19 +175,19 @@ void join_fragments(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& 
 
 }  // namespace
 
-std::vector<std::uint32_t> join_instances(
-    std::vector<Sighting> sightings,
-    const std::vector<std::uint8_t>& keep,
-    const std::vector<std::pair<std::uint32_t, std::uint32_t>>& touching,
-    const JoinParams& params) {
+JoinResult join_instances(std::vector<Sighting> sightings,
+                          const std::vector<std::uint8_t>& keep,
+                          const std::vector<std::pair<std::uint32_t, std::uint32_t>>& touching,
+                          const JoinParams& params) {
     params.validate();
     const std::size_t n_points = keep.size();
     std::erase_if(sightings, [&](const Sighting& s) {
         return s.instance == 0 || s.point >= n_points || keep[s.point] == 0;
     });
-    std::vector<std::uint32_t> labels(n_points, 0);
+    JoinResult out;
+    out.labels.assign(n_points, 0);
     if (sightings.empty()) {
-        return labels;
+        return out;
     }
     // By point (a counting sort: run[p] .. run[p + 1] are point p's), each point's by view.
     std::vector<std::size_t> run(n_points + 1, 0);
@@ -275,12 +275,14 @@ std::vector<std::uint32_t> join_instances(
     std::vector<std::uint32_t> roots;
     for (std::size_t p = 0; p < n_points; ++p) {
         roots.clear();
+        bool fallback = false;
         for (int pass = 0; pass < 2 && roots.empty(); ++pass) {
             for (std::size_t j = run[p]; j < run[p + 1]; ++j) {
                 if (pass == 1 || several[node[j]] == 0) {
                     roots.push_back(groups.root(node[j]));
                 }
             }
+            fallback = pass == 1;
         }
         if (roots.empty()) {
             continue;
@@ -299,6 +301,8 @@ std::vector<std::uint32_t> join_instances(
             j = e;
         }
         ++size[group[p]];
+        ++out.labelled;
+        out.doubtful += fallback || (roots.size() >= 2 && 2 * best_count <= roots.size());
     }
     join_fragments(touching, group, size, params, groups);
     // Labels 1.. by decreasing size.
@@ -315,9 +319,9 @@ std::vector<std::uint32_t> join_instances(
         rank[order[r]] = static_cast<std::uint32_t>(r + 1);
     }
     for (std::size_t i = 0; i < n_points; ++i) {
-        labels[i] = group[i] == kNone ? 0 : rank[groups.root(group[i])];
+        out.labels[i] = group[i] == kNone ? 0 : rank[groups.root(group[i])];
     }
-    return labels;
+    return out;
 }
 
 }  // namespace pc::cameras

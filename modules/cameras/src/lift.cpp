@@ -208,8 +208,10 @@ LiftResult lift(const XyzView& points,
         [&](const std::vector<Sighting>& mine) {
             sightings.insert(sightings.end(), mine.begin(), mine.end());
         });
-    r.label = join_instances(std::move(sightings), r.fruit,
-                             touching_fruit(points, r.fruit, spacing), params.join);
+    JoinResult joined = join_instances(std::move(sightings), r.fruit,
+                                       touching_fruit(points, r.fruit, spacing), params.join);
+    r.label = std::move(joined.labels);
+    r.doubtful = joined.doubtful;
     return r;
 }
 

@@ -22,6 +22,15 @@ struct JoinParams {
     void validate() const;
 };
 
+struct JoinResult {
+    std::vector<std::uint32_t> labels;  ///< per point: 0, or 1.. by decreasing point count
+    std::size_t labelled = 0;           ///< points that got a label
+    /// ... of those, points whose label is doubtful: only instances of several fruit saw them,
+    /// or as many of their sightings lie outside their label's fruit as in it (masks that
+    /// disagree across views)
+    std::size_t doubtful = 0;
+};
+
 /// 3D instances from the 2D instances of several views (pc_lift --instances). The nodes of a
 /// graph are the views' 2D instances; two are linked by the points of `keep` that both contain.
 /// Links are taken strongest first (shared points over the larger node's points) and join their
@@ -35,7 +44,7 @@ struct JoinParams {
 /// Returns a label per point (`keep` has one flag per point): 0 for points not kept or never
 /// sighted, else 1.. numbering the groups by decreasing point count (ties by first node).
 /// Deterministic. `sightings` is consumed (sorted in place).
-[[nodiscard]] std::vector<std::uint32_t> join_instances(
+[[nodiscard]] JoinResult join_instances(
     std::vector<Sighting> sightings,
     const std::vector<std::uint8_t>& keep,
     const std::vector<std::pair<std::uint32_t, std::uint32_t>>& touching,

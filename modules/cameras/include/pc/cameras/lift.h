@@ -36,6 +36,7 @@ struct LiftResult {
     std::vector<std::uint32_t> votes;  ///< ... of those, views whose mask covers it
     std::vector<std::uint8_t> fruit;   ///< 1 iff votes / views >= min_ratio and views >= min_views
     std::vector<std::uint32_t> label;  ///< with `instances`: join_instances() over the fruit
+    std::size_t doubtful = 0;          ///< ... and its fruit points with a doubtful label
 };
 
 /// The paper's mask lifting (2.3.1): each point's majority vote over the views that see it
