@@ -6,6 +6,7 @@
 
 #include <pc/cameras/join_instances.h>
 #include <pc/core/error.h>
+#include <pc/core/labels.h>
 
 namespace pc::cameras {
 
@@ -73,6 +74,13 @@ private:
 
 constexpr std::uint32_t kNone = 0xffffffffu;
 
+/// Two ids as one key that sorts and counts, the smaller first (an undirected pair).
+std::uint64_t pair_key(std::uint32_t a, std::uint32_t b) {
+    return (std::uint64_t{std::min(a, b)} << 32) | std::max(a, b);
+}
+std::uint32_t first_of(std::uint64_t key) { return static_cast<std::uint32_t>(key >> 32); }
+std::uint32_t second_of(std::uint64_t key) { return static_cast<std::uint32_t>(key & 0xffffffffu); }
+
 /// The distinct keys of `keys` in ascending order with how often each occurs.
 std::vector<std::pair<std::uint64_t, std::uint32_t>> count_keys(std::vector<std::uint64_t> keys) {
     std::sort(keys.begin(), keys.end());
@@ -103,8 +111,7 @@ std::vector<std::uint8_t> split_by_another_view(const std::vector<Link>& links,
     std::vector<Seen> seen;
     seen.reserve(2 * links.size());
     for (const Link& l : links) {
-        const auto a = static_cast<std::uint32_t>(l.pair >> 32),
-                   b = static_cast<std::uint32_t>(l.pair & 0xffffffffu);
+        const std::uint32_t a = first_of(l.pair), b = second_of(l.pair);
         seen.push_back({a, view_of[b], l.shared});
         seen.push_back({b, view_of[a], l.shared});
     }
@@ -142,9 +149,7 @@ void join_fragments(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& 
     for (const auto& [i, j] : touching) {
         if (i < group.size() && j < group.size() && group[i] != kNone && group[j] != kNone &&
             group[i] != group[j]) {
-            const std::uint32_t lo = std::min(group[i], group[j]),
-                                hi = std::max(group[i], group[j]);
-            pairs.push_back((std::uint64_t{lo} << 32) | hi);
+            pairs.push_back(pair_key(group[i], group[j]));
         }
     }
     struct Contact {
@@ -153,8 +158,7 @@ void join_fragments(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& 
     };
     std::vector<Contact> contacts;
     for (const auto& [pair, n] : count_keys(std::move(pairs))) {
-        const auto a = static_cast<std::uint32_t>(pair >> 32),
-                   b = static_cast<std::uint32_t>(pair & 0xffffffffu);
+        const std::uint32_t a = first_of(pair), b = second_of(pair);
         contacts.push_back({a, b, static_cast<double>(n) / std::min(size[a], size[b])});
     }
     std::stable_sort(contacts.begin(), contacts.end(),
@@ -228,7 +232,7 @@ JoinResult join_instances(std::vector<Sighting> sightings,
     // still counts every pair of a point's instances with the same chance, 2 / m.
     std::vector<std::uint64_t> pairs;
     pairs.reserve(sightings.size());
-    for (std::size_t p = 0; p + 1 < run.size(); ++p) {
+    for (std::size_t p = 0; p < n_points; ++p) {
         const std::size_t begin = run[p], m = run[p + 1] - begin;
         if (m == 0) {
             continue;
@@ -236,8 +240,7 @@ JoinResult join_instances(std::vector<Sighting> sightings,
         const std::uint32_t hub = node[begin + sightings[begin].point % m];
         for (std::size_t j = begin; j < begin + m; ++j) {
             if (node[j] != hub) {
-                const std::uint32_t lo = std::min(hub, node[j]), hi = std::max(hub, node[j]);
-                pairs.push_back((std::uint64_t{lo} << 32) | hi);
+                pairs.push_back(pair_key(hub, node[j]));
             }
         }
     }
@@ -255,19 +258,19 @@ JoinResult join_instances(std::vector<Sighting> sightings,
     };
     std::vector<Link> links;
     for (const auto& [pair, shared] : count_keys(std::move(pairs))) {
-        const std::uint32_t larger = std::max(points_in[pair >> 32], points_in[pair & 0xffffffffu]);
+        const std::uint32_t larger =
+            std::max(points_in[first_of(pair)], points_in[second_of(pair)]);
         links.push_back({pair, shared, static_cast<double>(shared) / larger});
     }
     const std::vector<std::uint8_t> several = split_by_another_view(links, view_of);
     std::erase_if(links, [&](const Link& l) {
-        return several[l.pair >> 32] != 0 || several[l.pair & 0xffffffffu] != 0;
+        return several[first_of(l.pair)] != 0 || several[second_of(l.pair)] != 0;
     });
     std::stable_sort(links.begin(), links.end(),
                      [](const Link& a, const Link& b) { return a.strength > b.strength; });
     Groups groups(view_of);
     for (const Link& l : links) {
-        groups.join(static_cast<std::uint32_t>(l.pair >> 32),
-                    static_cast<std::uint32_t>(l.pair & 0xffffffffu));
+        groups.join(first_of(l.pair), second_of(l.pair));
     }
     // Each point to the group most of its sightings belong to (ties: the lower group), counting
     // instances of several fruit only for points no other instance saw.
@@ -305,22 +308,10 @@ JoinResult join_instances(std::vector<Sighting> sightings,
         out.doubtful += fallback || (roots.size() >= 2 && 2 * best_count <= roots.size());
     }
     join_fragments(touching, group, size, params, groups);
-    // Labels 1.. by decreasing size.
-    std::vector<std::uint32_t> order;
-    for (std::uint32_t n = 0; n < size.size(); ++n) {
-        if (size[n] > 0) {
-            order.push_back(n);
-        }
-    }
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return size[a] > size[b]; });
-    std::vector<std::uint32_t> rank(view_of.size(), 0);
-    for (std::size_t r = 0; r < order.size(); ++r) {
-        rank[order[r]] = static_cast<std::uint32_t>(r + 1);
-    }
     for (std::size_t i = 0; i < n_points; ++i) {
-        out.labels[i] = group[i] == kNone ? 0 : rank[groups.root(group[i])];
+        out.labels[i] = group[i] == kNone ? 0 : groups.root(group[i]) + 1;
     }
+    renumber_by_size(out.labels);
     return out;
 }
 

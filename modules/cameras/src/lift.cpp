@@ -29,7 +29,8 @@ void LiftParams::validate() const {
 namespace {
 
 /// Pairs of fruit points next to each other: each fruit point with its kTouching nearest fruit
-/// points within 2 spacings (join_instances' fragments).
+/// points within 4 spacings (join_instances' fragments; 2 spacings and 6 neighbours left more
+/// slivers apart, docs/views.md).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> touching_fruit(
     const XyzView& points, const std::vector<std::uint8_t>& fruit, double spacing) {
     constexpr std::size_t kTouching = 12;

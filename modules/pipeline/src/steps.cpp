@@ -272,8 +272,7 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
             typical < kTooFewForABall * expected) {
             step.warnings.push_back(
                 "the median fruit holds " + format_number(typical) +
-                " points, far fewer than a "
-                "solid ball of the fruit radius " +
+                " points, far fewer than a solid ball of the fruit radius " +
                 format_number(r.fruit_radius) + " at spacing " + format_number(r.spacing) +
                 " would (about " + format_number(std::round(expected)) +
                 "): the radius may be a bunch's, each bunch counted as one fruit; give "

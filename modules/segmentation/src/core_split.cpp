@@ -15,12 +15,12 @@
 #include <Eigen/Eigenvalues>
 
 #include <pc/core/error.h>
+#include <pc/core/labels.h>
 #include <pc/core/radix_sort.h>
 #include <pc/core/stats.h>
 #include <pc/search/grid.h>
 #include <pc/search/spacing.h>
 #include <pc/segmentation/core_split.h>
-#include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
 

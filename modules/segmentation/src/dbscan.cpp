@@ -5,9 +5,9 @@
 #include <numeric>
 
 #include <pc/core/error.h>
+#include <pc/core/labels.h>
 #include <pc/search/grid.h>
 #include <pc/segmentation/dbscan.h>
-#include <pc/segmentation/recursive_split.h>
 
 namespace pc::segmentation {
 

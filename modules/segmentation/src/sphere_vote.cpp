@@ -9,10 +9,10 @@
 #include <Eigen/Eigenvalues>
 
 #include <pc/core/error.h>
+#include <pc/core/labels.h>
 #include <pc/core/stats.h>
 #include <pc/search/grid.h>
 #include <pc/search/spacing.h>
-#include <pc/segmentation/recursive_split.h>
 #include <pc/segmentation/sphere_vote.h>
 
 namespace pc::segmentation {

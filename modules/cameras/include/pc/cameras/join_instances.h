@@ -42,8 +42,9 @@ struct JoinResult {
 /// larger one it touches (`touching`: pairs of point indices next to each other in space) when it
 /// is at most `fragment` of its size and no view holds an instance of each, most touching first.
 /// Returns a label per point (`keep` has one flag per point): 0 for points not kept or never
-/// sighted, else 1.. numbering the groups by decreasing point count (ties by first node).
-/// Deterministic. `sightings` is consumed (sorted in place).
+/// sighted, else 1.. numbering the groups by decreasing point count (renumber_by_size: ties by
+/// smallest point index).
+/// Deterministic. `sightings` is consumed.
 [[nodiscard]] JoinResult join_instances(
     std::vector<Sighting> sightings,
     const std::vector<std::uint8_t>& keep,

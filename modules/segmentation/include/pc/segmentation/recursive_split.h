@@ -73,8 +73,4 @@ struct RecursiveSplitResult {
     return recursive_split(XyzView(cloud), std::move(labels), params);
 }
 
-/// Renumbers `labels` (0 = noise kept) as 1..N by decreasing cluster size, ties by smallest point
-/// index; clusters below `min_size` points become 0. Returns N.
-std::uint32_t renumber_by_size(std::vector<std::uint32_t>& labels, std::uint32_t min_size = 0);
-
 }  // namespace pc::segmentation
