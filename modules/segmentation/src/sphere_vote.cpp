@@ -511,10 +511,11 @@ private:
     std::vector<double> sum_;           ///< cell c's total weight
 };
 
-/// True when the points are flat (a leaf, the ground): the smallest variance under 1 % of the
-/// middle one.
-bool flat(const XyzView& points, const std::vector<std::uint32_t>& at) {
-    if (at.size() < 4) {
+/// True when the points are a sheet (a leaf, the ground): the smallest standard deviation under
+/// `sheet` × the middle one, and that thickness not a bowl's (a cap of a fruit: a quadric over
+/// the sheet's plane explains most of it; a leaf's is noise or lattice steps).
+bool flat(const XyzView& points, const std::vector<std::uint32_t>& at, double sheet) {
+    if (at.size() < 10) {
         return false;
     }
     V3 mean = V3::Zero();
@@ -527,19 +528,40 @@ bool flat(const XyzView& points, const std::vector<std::uint32_t>& at) {
         const V3 q = vec(points[i]) - mean;
         m += q * q.transpose();
     }
-    const V3 l = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues();
-    return l(0) < 0.01 * l(1);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(m);
+    const V3 l = es.eigenvalues();
+    if (!(l(0) < sheet * sheet * l(1))) {
+        return false;
+    }
+    // w = quadric(u, v) by least squares in the frame of the principal axes
+    Eigen::Matrix<double, 6, 6> a = Eigen::Matrix<double, 6, 6>::Zero();
+    Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+    const V3 eu = es.eigenvectors().col(2) / std::sqrt(l(2) / static_cast<double>(at.size()));
+    const V3 ev = es.eigenvectors().col(1) / std::sqrt(l(1) / static_cast<double>(at.size()));
+    const V3 ew = es.eigenvectors().col(0);
+    for (auto i : at) {
+        const V3 q = vec(points[i]) - mean;
+        const double u = q.dot(eu), v = q.dot(ev), w = q.dot(ew);
+        Eigen::Matrix<double, 6, 1> f;
+        f << u * u, v * v, u * v, u, v, 1.0;
+        a += f * f.transpose();
+        b += f * w;
+    }
+    const Eigen::Matrix<double, 6, 1> c = a.ldlt().solve(b);
+    const double explained = c.dot(b);  // the fit's share of sum w² (least squares: c·Aᵀw)
+    return !(explained > 0.5 * l(0));
 }
 
 /// Every clustered point to the peak nearest relative to its radius, within `reach` (label
 /// 1 + the peak); the rest keep their cluster (label 1 + peaks + the cluster's), unless that rest
-/// is flat (leaves, ground: no fruit; label 0). In place.
+/// is a sheet (leaves, ground: no fruit; label 0). In place.
 void assign(const XyzView& points,
             const std::vector<std::uint32_t>& members,
             std::vector<std::uint32_t>& labels,
             const std::vector<Peak>& peaks,
-            double reach,
+            const SphereVoteParams& params,
             double R) {
+    const double reach = params.reach;
     const double cell = reach * 1.4 * R;
     const V3 origin = peaks.front().centre;
     const auto cell_of = [&](const V3& p, int a) { return cell_index((p(a) - origin(a)) / cell); };
@@ -583,7 +605,7 @@ void assign(const XyzView& points,
         }
     }
     for (const auto& [label, at] : rest) {
-        if (flat(points, at)) {
+        if (flat(points, at, params.sheet)) {
             for (auto i : at) {
                 out[i] = 0;
             }
@@ -652,6 +674,9 @@ void SphereVoteParams::validate() const {
     positive(peak_radius, "peak_radius");
     positive(peak_separation, "peak_separation");
     positive(reach, "reach");
+    if (!(sheet >= 0 && sheet < 1)) {
+        throw InvalidArgument("sphere_vote: sheet must be in [0, 1)");
+    }
     positive(fragment_points, "fragment_points");
     if (!(solid_refit >= 1 && std::isfinite(solid_refit))) {
         throw InvalidArgument("sphere_vote: solid_refit must be >= 1");
@@ -776,7 +801,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // a solid's refit below starts again from the clusters
     const std::vector<std::uint32_t> clusters =
         r.solid && r.estimated ? labels : std::vector<std::uint32_t>{};
-    assign(points, members, labels, peaks, params.reach, R);
+    assign(points, members, labels, peaks, params, R);
     // Solid fruit: R from the outer layer's normals reads short (about 0.65-0.8 of the fruit's in
     // random volumes, and a fruit of 3 spacings then splits in two). The points given to each
     // centre tell the size: in a filled ball the median distance from the centre is R·0.5^(1/3).
@@ -803,7 +828,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
                     r.peaks = 0;
                     return done();
                 }
-                assign(points, members, labels, peaks, params.reach, R);
+                assign(points, members, labels, peaks, params, R);
             }
         }
     }

@@ -24,6 +24,11 @@ struct SphereVoteParams {
     /// this (1: all parallel, a flat patch such as a piece of leaf)
     double max_alignment = 0.93;
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
+    /// ... unless that rest is a sheet (a leaf, the ground): its smallest standard deviation under
+    /// this × its middle one and not curved like a bowl (a quadric over its plane explains under
+    /// half its thickness; a fruit's cap of half-angle θ has about 0.29 θ, a hemisphere 0.5;
+    /// leaves a few lattice steps wide 0.2-0.45, their thickness being steps or noise)
+    double sheet = 0.45;
     /// Solids: vote again with the size the assigned points give (their median distance from
     /// their centre, as in a filled ball) when it exceeds R by this factor
     double solid_refit = 1.15;
@@ -60,7 +65,8 @@ struct SphereVoteResult {
 ///     at least peak_separation × R apart and with min_support × the median support, are fruit.
 ///  4. Every clustered point goes to the peak nearest relative to the peak's radius (the median
 ///     distance of its voters), when within `reach` of it; points far from every peak keep their
-///     DBSCAN cluster as one more part. Pieces of one fruit that DBSCAN separated join their peak.
+///     DBSCAN cluster as one more part, or are dropped when that part is a flat `sheet`. Pieces
+///     of one fruit that DBSCAN separated join their peak.
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
                                            std::vector<std::uint32_t> labels,
