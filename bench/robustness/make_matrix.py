@@ -6,8 +6,8 @@ Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
 split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
-'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) and 'held-out-5'
-(541-640) each after the one before."""
+'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-7'
+(741-840) each after the one before."""
 import random
 import os
 
@@ -89,6 +89,11 @@ LATER_PARTS = [
     ('held-out-6', 2031, 'kiwi', (0.028, '--species apple --fruit-radius 0.028 --bunch-min 1 '
      '--bunch-max 4 --touch-gap 0.001 --overlap 0.05 --fruit-count 90 --canopy 0.7,0.7,0.5'),
      'dark-blue', (45, 50, 120)),
+    # 7 (session 22): apricot-like, 22 mm, single or in pairs 0-4 mm apart; yellow-green fruit
+    # (hue about 68 degrees: at the edge of foliage green, as golden apples and pears are)
+    ('held-out-7', 2032, 'apricot', (0.022, '--species apple --fruit-radius 0.022 --bunch-min 1 '
+     '--bunch-max 2 --touch-gap 0.004 --fruit-count 100 --canopy 0.7,0.7,0.55'),
+     'yellow-green', (175, 190, 60)),
 ]
 families, colours, first = dict(FAMILIES), dict(COLOURS), 241
 for part, seed, family, spec, colour, rgb in LATER_PARTS:

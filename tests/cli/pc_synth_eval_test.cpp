@@ -164,6 +164,26 @@ TEST(PcFruitcount, BunchesCountedAsOneFruitEachAreAWarning) {
     EXPECT_EQ(j["steps"][3]["rule"], "solid fruit: their outer layer voted") << j["steps"];
 }
 
+TEST(PcFruitcount, CentresThatTakeFewPointsAreAWarning) {
+    // Plums of 17 mm (60 of them, bunches of touching fruit), given a radius 3.5 times too large:
+    // few centres fit, most points keep their DBSCAN cluster (about 16 counted) and the centres
+    // take under a fifth of the points: a warning. With the radius estimated, none.
+    const std::string scene =
+        "@pc_synth --species plum --mode implicit --fruit-count 60 --seed 3 | @pc_fruitcount ";
+    const RunResult wrong = run_shell(scene + "--fruit-radius 0.06");
+    ASSERT_EQ(wrong.code, 0) << wrong.err;
+    auto j = nlohmann::json::parse(wrong.out);
+    EXPECT_LT(j["count"].get<int>(), 30);
+    EXPECT_LT(j["steps"][3]["claimed"].get<double>(), 0.4) << j["steps"];
+    EXPECT_NE(wrong.err.find("fruit centres took only"), std::string::npos) << wrong.err;
+    const RunResult right = run_shell(scene);
+    ASSERT_EQ(right.code, 0) << right.err;
+    j = nlohmann::json::parse(right.out);
+    EXPECT_EQ(j["count"].get<int>(), 60);
+    EXPECT_GT(j["steps"][3]["claimed"].get<double>(), 0.9) << j["steps"];
+    EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+}
+
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.
 std::string labelled(const std::vector<int>& labels, bool with_gt = true) {
     std::string s = pcd_header(with_gt ? "x y z label gt_instance" : "x y z label",

@@ -106,6 +106,7 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     r.fruit_radius = v.fruit_radius;
     r.peaks = v.peaks;
     r.solid = v.solid;
+    r.claimed = v.claimed;
     return r;
 }
 

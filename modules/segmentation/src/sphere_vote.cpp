@@ -833,6 +833,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
     }
     r.peaks = static_cast<std::uint32_t>(peaks.size());
+    const auto claimed = std::count_if(members.begin(), members.end(), [&](std::uint32_t i) {
+        return labels[i] >= 1 && labels[i] <= r.peaks;
+    });
+    r.claimed = static_cast<double>(claimed) / static_cast<double>(members.size());
     return done();
 }
 

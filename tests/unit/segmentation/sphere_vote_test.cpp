@@ -124,6 +124,7 @@ TEST(SphereVote, HollowBunchIsCutIntoItsSpheresAndTheRadiusFound) {
     EXPECT_FALSE(r.solid);
     EXPECT_TRUE(r.estimated);
     EXPECT_NEAR(r.fruit_radius, 10, 0.5);
+    EXPECT_EQ(r.claimed, 1.0);  // every point went to a centre
     const long wrong = misassigned(r.labels, s.truth);
     ASSERT_GE(wrong, 0);
     EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));  // under 1 %: contact rims
@@ -328,6 +329,7 @@ TEST(SphereVote, ThickLeavesAreDroppedAndCurvedLeftoversKept) {
     }
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
     EXPECT_EQ(r.cluster_count, 8u);
+    EXPECT_LT(r.claimed, 1.0);  // the leaf and the cap went to no centre
     for (std::size_t k = 0; k < s.cloud.size(); ++k) {
         if (s.truth[k] == 0) {
             ASSERT_EQ(r.labels[k], 0u) << "the leaf is no fruit";

@@ -56,6 +56,7 @@ struct RecursiveSplitResult {
     double fruit_radius = 0;      ///< cores and spheres rules: the fruit radius used
     std::uint32_t peaks = 0;      ///< spheres rule: fruit centres found
     bool solid = false;           ///< spheres rule: solid fruit (their outer layer voted)
+    double claimed = 0;           ///< spheres rule: share of the points given to a fruit centre
     double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
 };
 
