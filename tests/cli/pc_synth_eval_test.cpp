@@ -184,6 +184,25 @@ TEST(PcFruitcount, CentresThatTakeFewPointsAreAWarning) {
     EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
 }
 
+TEST(PcFruitcount, ADiameterGivenAsTheFruitRadiusIsAWarning) {
+    // The plums of the test above (radius 17 mm, normals measure about 15): given their
+    // diameter, 34 mm, about a third are counted and the report says why; given their radius,
+    // 60 and no warning.
+    const std::string scene =
+        "@pc_synth --species plum --mode implicit --fruit-count 60 --seed 3 | @pc_fruitcount ";
+    const RunResult diameter = run_shell(scene + "--fruit-radius 0.034");
+    ASSERT_EQ(diameter.code, 0) << diameter.err;
+    auto j = nlohmann::json::parse(diameter.out);
+    EXPECT_LT(j["count"].get<int>(), 30);
+    EXPECT_NEAR(j["steps"][3]["measured_radius"].get<double>(), 0.017, 0.004) << j["steps"];
+    EXPECT_NE(diameter.err.find("is it a diameter"), std::string::npos) << diameter.err;
+    const RunResult radius = run_shell(scene + "--fruit-radius 0.017");
+    ASSERT_EQ(radius.code, 0) << radius.err;
+    j = nlohmann::json::parse(radius.out);
+    EXPECT_EQ(j["count"].get<int>(), 60);
+    EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+}
+
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.
 std::string labelled(const std::vector<int>& labels, bool with_gt = true) {
     std::string s = pcd_header(with_gt ? "x y z label gt_instance" : "x y z label",

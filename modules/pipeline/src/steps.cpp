@@ -234,6 +234,12 @@ constexpr double kTooFewForABall = 0.25 / kSolidBallPoints;
 /// below it (3 more found no centre), 1 of the 697 counted within 20 % (0.38, a degraded peach
 /// at 2 spacings).
 constexpr double kFewClaimed = 0.4;
+/// A given fruit radius more than 1/kGivenTooLarge times the one the points' normals measure is
+/// likely a diameter, or in other units. Over the 740 scenes of the condition matrix given their
+/// true median radius, the measured one was 0.60-1.08 of it at 3 spacings a radius and more
+/// (solids read short: 0.60-0.7), and up to 2.5 times larger for bunches at 2 spacings (so a
+/// larger measurement is no warning: the given radius is the cure there).
+constexpr double kGivenTooLarge = 0.55;
 
 /// The median point count of clusters 1..count (0 when there are none).
 double median_cluster_points(const io::Blob& labelled, std::uint32_t count) {
@@ -272,6 +278,9 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     if (spheres) {
         step.record.values = {
             {"spacing", r.spacing}, {"fruit_radius", r.fruit_radius}, {"claimed", r.claimed}};
+        if (p.fruit_radius > 0) {
+            step.record.values.emplace_back("measured_radius", r.measured_radius);
+        }
         step.record.rule = r.solid ? "solid fruit: their outer layer voted" : "fruit surfaces";
         const double expected = kSolidBallPoints * std::pow(r.fruit_radius / r.spacing, 3);
         const double typical = median_cluster_points(step.blob, r.cluster_count);
@@ -284,6 +293,15 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                 " would (about " + format_number(std::round(expected)) +
                 "): the radius may be a bunch's, each bunch counted as one fruit; give "
                 "--fruit-radius if you know the fruit's size");
+        }
+        if (p.fruit_radius > 0 && r.measured_radius > 0 &&
+            r.measured_radius < kGivenTooLarge * p.fruit_radius) {
+            step.warnings.push_back(
+                "the given fruit radius " + format_number(p.fruit_radius) + " is more than " +
+                format_number(std::round(10 / kGivenTooLarge) / 10) + " times the " +
+                format_number(r.measured_radius) +
+                " the points' normals measure: is it a diameter, or in other units? (too "
+                "large a radius joins neighbouring fruit into one)");
         }
         if (r.peaks > 0 && r.claimed < kFewClaimed) {
             step.warnings.push_back(

@@ -107,6 +107,7 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     r.peaks = v.peaks;
     r.solid = v.solid;
     r.claimed = v.claimed;
+    r.measured_radius = v.measured_radius;
     return r;
 }
 

@@ -759,19 +759,26 @@ SphereVoteResult sphere_vote(const XyzView& points,
     if (surface.at.size() < 10) {
         return done();
     }
-    double R = params.fruit_radius;
-    if (!(R > 0)) {
-        // Normals that measure R see half of it (larger neighbourhoods span a bunch and feed
-        // back into ever larger estimates); refitted once at the scale the first estimate gives,
-        // on surfaces only upwards (a smaller neighbourhood on a noisy surface has noisier
-        // normals, whose lines meet nearer: 0.033 -> 0.024 for fruit of 0.034).
-        Normals nm = normals(surface, 0.5 * first, s);
-        R = radius_from_normals(s, nm, !r.solid);
-        if (R > 0 && differs(R, first) && (r.solid || R > first)) {
-            nm = normals(surface, 0.5 * R, s);
+    // R from where the normal lines meet, starting from a size: normals that measure R see half
+    // of it (larger neighbourhoods span a bunch and feed back into ever larger estimates);
+    // refitted once at the scale the first estimate gives, on surfaces only upwards (a smaller
+    // neighbourhood on a noisy surface has noisier normals, whose lines meet nearer: 0.033 ->
+    // 0.024 for fruit of 0.034). 0 when the lines say nothing.
+    const auto measured = [&](double start) {
+        Normals nm = normals(surface, 0.5 * start, s);
+        double e = radius_from_normals(s, nm, !r.solid);
+        if (e > 0 && differs(e, start) && (r.solid || e > start)) {
+            nm = normals(surface, 0.5 * e, s);
             const double again = radius_from_normals(s, nm, !r.solid);
-            R = again > 0 ? again : R;
+            e = again > 0 ? again : e;
         }
+        return e;
+    };
+    double R = params.fruit_radius;
+    if (R > 0) {
+        r.measured_radius = measured(rough_size(all, fragments));  // a check of the given one
+    } else {
+        R = measured(first);
         if (!(R > 0)) {
             return done();
         }

@@ -57,6 +57,7 @@ struct RecursiveSplitResult {
     std::uint32_t peaks = 0;      ///< spheres rule: fruit centres found
     bool solid = false;           ///< spheres rule: solid fruit (their outer layer voted)
     double claimed = 0;           ///< spheres rule: share of the points given to a fruit centre
+    double measured_radius = 0;   ///< spheres rule, radius given: the one the points give (0: none)
     double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
 };
 

@@ -49,8 +49,10 @@ struct SphereVoteResult {
     double spacing = 0;       ///< s: median nearest-neighbour distance of the points that voted
     double fruit_radius = 0;  ///< R used (the prior, or the estimate; 0 when none was possible)
     bool estimated = false;   ///< R was estimated from the cloud
-    bool solid = false;       ///< solid fruit (their outer layer voted), else surfaces
-    double claimed = 0;       ///< share of the clustered points given to a fruit centre
+    /// With a given R: the radius the points' normals give on their own (0: none), a check
+    double measured_radius = 0;
+    bool solid = false;  ///< solid fruit (their outer layer voted), else surfaces
+    double claimed = 0;  ///< share of the clustered points given to a fruit centre
 };
 
 /// Counts fruit as spheres, on solid and surface clouds alike, without medians over clusters:
