@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# The condition matrix of docs/robustness.md: 640 scenes (bench/robustness/scenes.txt) counted by
+# The condition matrix of docs/robustness.md: 840 scenes (bench/robustness/scenes.txt) counted by
 # each method, scored against their truth. One command:
 #     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
-# needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), and any
+# needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), radius
+# (the default plus --fruit-radius: the median radius of the fruit present, as a user who knows
+# their fruit would give it), and any
 # preset name (--preset NAME); x:OPT,OPT,... tries options (x:--no-knn,--eps,3xs).
 # Scores: F1 of one-to-one matching at IoU > 0.5 and count error, both against the fruit present in
 # the cloud (a fruit the export lost cannot be counted). Rows: build/robustness/rows-SPLIT.csv.
@@ -53,6 +55,9 @@ while IFS='|' read -r id part family mode rs noise colour units args; do
       default) extra=() ;;
       word) grep -qw -- "$colour" <<<"$words" || continue; extra=(--fruit-color "$colour") ;;
       nocolor) extra=(--no-color) ;;
+      radius) extra=(--fruit-radius "$(python3 -c 'import json, statistics, sys
+t = json.load(open(sys.argv[1]))
+print(statistics.median(f["radius"] for f in t["fruits"] if f["points"] > 0))' "$stem.json")") ;;
       cores) extra=(--rule cores) ;;
       x:*) IFS=, read -r -a extra <<<"${method#x:}" ;;
       *) extra=(--preset "$method") ;;
