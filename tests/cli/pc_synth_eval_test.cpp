@@ -164,43 +164,33 @@ TEST(PcFruitcount, BunchesCountedAsOneFruitEachAreAWarning) {
     EXPECT_EQ(j["steps"][3]["rule"], "solid fruit: their outer layer voted") << j["steps"];
 }
 
-TEST(PcFruitcount, CentresThatTakeFewPointsAreAWarning) {
-    // Plums of 17 mm (60 of them, bunches of touching fruit), given a radius 3.5 times too large:
-    // few centres fit, most points keep their DBSCAN cluster (about 16 counted) and the centres
-    // take under a fifth of the points: a warning. With the radius estimated, none.
-    const std::string scene =
-        "@pc_synth --species plum --mode implicit --fruit-count 60 --seed 3 | @pc_fruitcount ";
-    const RunResult wrong = run_shell(scene + "--fruit-radius 0.06");
-    ASSERT_EQ(wrong.code, 0) << wrong.err;
-    auto j = nlohmann::json::parse(wrong.out);
-    EXPECT_LT(j["count"].get<int>(), 30);
-    EXPECT_LT(j["steps"][3]["claimed"].get<double>(), 0.4) << j["steps"];
-    EXPECT_NE(wrong.err.find("fruit centres took only"), std::string::npos) << wrong.err;
-    const RunResult right = run_shell(scene);
-    ASSERT_EQ(right.code, 0) << right.err;
-    j = nlohmann::json::parse(right.out);
-    EXPECT_EQ(j["count"].get<int>(), 60);
-    EXPECT_GT(j["steps"][3]["claimed"].get<double>(), 0.9) << j["steps"];
-    EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
-}
-
-TEST(PcFruitcount, ADiameterGivenAsTheFruitRadiusIsAWarning) {
-    // The plums of the test above (radius 17 mm, normals measure about 15): given their
-    // diameter, 34 mm, about a third are counted and the report says why; given their radius,
-    // 60 and no warning.
-    const std::string scene =
-        "@pc_synth --species plum --mode implicit --fruit-count 60 --seed 3 | @pc_fruitcount ";
-    const RunResult diameter = run_shell(scene + "--fruit-radius 0.034");
-    ASSERT_EQ(diameter.code, 0) << diameter.err;
-    auto j = nlohmann::json::parse(diameter.out);
-    EXPECT_LT(j["count"].get<int>(), 30);
-    EXPECT_NEAR(j["steps"][3]["measured_radius"].get<double>(), 0.017, 0.004) << j["steps"];
-    EXPECT_NE(diameter.err.find("is it a diameter"), std::string::npos) << diameter.err;
-    const RunResult radius = run_shell(scene + "--fruit-radius 0.017");
-    ASSERT_EQ(radius.code, 0) << radius.err;
-    j = nlohmann::json::parse(radius.out);
-    EXPECT_EQ(j["count"].get<int>(), 60);
-    EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+TEST(PcFruitcount, WrongFruitRadiiAreWarnings) {
+    // 60 plums 17 mm in radius (normals measure about 15 mm) in touching bunches, counted with
+    // the radius estimated, given, given as their diameter, and given 3.5 times too large.
+    const auto count = [](const std::string& flags) {
+        const RunResult r = run_shell(
+            "@pc_synth --species plum --mode implicit --fruit-count 60 --seed 3 | @pc_fruitcount " +
+            flags);
+        EXPECT_EQ(r.code, 0) << r.err;
+        return std::pair{nlohmann::json::parse(r.out), r.err};
+    };
+    for (const std::string flags : {"", "--fruit-radius 0.017"}) {
+        const auto [j, err] = count(flags);
+        EXPECT_EQ(j["count"].get<int>(), 60) << flags;
+        EXPECT_GT(j["steps"][3]["claimed"].get<double>(), 0.9) << j["steps"];
+        EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+    }
+    // The diameter: about a third counted, and the measured radius says why.
+    const auto [diameter, diameter_err] = count("--fruit-radius 0.034");
+    EXPECT_LT(diameter["count"].get<int>(), 30);
+    EXPECT_NEAR(diameter["steps"][3]["measured_radius"].get<double>(), 0.017, 0.004);
+    EXPECT_NE(diameter_err.find("is it a diameter"), std::string::npos) << diameter_err;
+    // Far too large: few centres fit, most points keep their DBSCAN cluster, and the centres
+    // take under a fifth of the points.
+    const auto [large, large_err] = count("--fruit-radius 0.06");
+    EXPECT_LT(large["count"].get<int>(), 30);
+    EXPECT_LT(large["steps"][3]["claimed"].get<double>(), 0.4) << large["steps"];
+    EXPECT_NE(large_err.find("fruit centres took only"), std::string::npos) << large_err;
 }
 
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.
