@@ -36,6 +36,7 @@ int main(int argc, char** argv) {
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
     bool eps_check = false;
+    bool no_eps_check = false;
     std::string cloud_out, cloud_all, plot;
 
     pc::cli::Tool tool("pc_fruitcount",
@@ -97,7 +98,9 @@ int main(int argc, char** argv) {
                 "count clusters with at least this many points");
     tool.flag("eps-check", &eps_check,
               "count again at 0.8 and 1.25 x the eps used (DBSCAN and split rerun): a count that "
-              "swings by more than 2x is a warning; eps and counts go to the report");
+              "swings by more than 2x is a warning; eps and counts go to the report. Without it, "
+              "run only when the spheres split's centres took under 90 % of the points");
+    tool.flag("no-eps-check", &no_eps_check, "never run the eps check");
     tool.option("gt", &gt, "ground-truth count: adds error and recovery to the report");
     const pc::cli::Report report(tool, "count");
     tool.option("cloud", &cloud_out,
@@ -132,6 +135,9 @@ int main(int argc, char** argv) {
                 (void)pc::cli::container_for(*path);  // a .las name refused before any work
             }
         }
+        if (eps_check && no_eps_check) {
+            throw pc::InvalidArgument("--eps-check and --no-eps-check: give one of them");
+        }
         pc::tools::check_plot_path(plot);
         pc::tools::check_stem("plot", plot, inputs.size());
         if (!cloud_all.empty() && chain.voxel) {
@@ -157,7 +163,7 @@ int main(int argc, char** argv) {
                 warnings.push_back(w);
             }
             std::optional<pl::EpsCheck> check;
-            if (eps_check) {
+            if (eps_check || (!no_eps_check && pl::eps_sensitive(r))) {
                 check = pl::check_eps(r, chain);
                 if (check->warning) {
                     warnings.push_back(*check->warning);

@@ -179,6 +179,7 @@ TEST(PcFruitcount, WrongFruitRadiiAreWarnings) {
         EXPECT_EQ(j["count"].get<int>(), 60) << flags;
         EXPECT_GT(j["steps"][3]["claimed"].get<double>(), 0.9) << j["steps"];
         EXPECT_TRUE(j["warnings"].empty()) << j["warnings"];
+        EXPECT_FALSE(j.contains("eps_check")) << "centres took nearly every point: no check";
     }
     // The diameter: about a third counted, and the measured radius says why.
     const auto [diameter, diameter_err] = count("--fruit-radius 0.034");
@@ -191,6 +192,11 @@ TEST(PcFruitcount, WrongFruitRadiiAreWarnings) {
     EXPECT_LT(large["count"].get<int>(), 30);
     EXPECT_LT(large["steps"][3]["claimed"].get<double>(), 0.4) << large["steps"];
     EXPECT_NE(large_err.find("fruit centres took only"), std::string::npos) << large_err;
+    // DBSCAN's clusters make most of that count: eps matters, and is checked unasked.
+    ASSERT_TRUE(large.contains("eps_check"));
+    EXPECT_EQ(large["eps_check"]["counts"].size(), 3u);
+    EXPECT_FALSE(count("--fruit-radius 0.06 --no-eps-check").first.contains("eps_check"));
+    EXPECT_EQ(run_shell("@pc_fruitcount --eps-check --no-eps-check -i /dev/null").code, 2);
 }
 
 /// Three fruit of 4 points on a line (x = 0.., 10.., 20..), with `label` as given.

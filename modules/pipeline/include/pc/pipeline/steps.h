@@ -91,6 +91,11 @@ struct MarkedChain {
     const ChainParams& p,
     const std::function<void(const std::string&)>& progress = {});
 
+/// True when the count may depend on eps: the spheres split's fruit centres took under 90 % of
+/// the clustered points (the rest is counted by DBSCAN's clusters). pc_fruitcount then runs
+/// check_eps() unasked.
+[[nodiscard]] bool eps_sensitive(const ChainResult& chain);
+
 /// The count again at other eps: DBSCAN and the split rerun on the points DBSCAN saw (the
 /// chain's labelled cloud), at `factors` × the eps its DBSCAN step used.
 struct EpsCheck {
