@@ -418,29 +418,34 @@ segmentation::ClusterSummary summarize(const io::Blob& labelled, std::size_t min
     return segmentation::summarize_clusters(io::XyzPoints(labelled).view(), labels, min_points);
 }
 
-bool eps_sensitive(const ChainResult& chain) {
-    for (const StepRecord& step : chain.steps) {
-        for (const auto& [name, value] : step.values) {
-            if (step.name == "recursive_split" && name == "claimed") {
-                return value < kEpsSensitive;
+namespace {
+
+/// The value `name` a step of the chain recorded (dbscan's eps, the split's claimed share).
+std::optional<double> step_value(const ChainResult& chain,
+                                 const std::string& step,
+                                 const std::string& name) {
+    for (const StepRecord& record : chain.steps) {
+        for (const auto& [key, value] : record.values) {
+            if (record.name == step && key == name) {
+                return value;
             }
         }
     }
-    return false;
+    return std::nullopt;
+}
+
+}  // namespace
+
+bool eps_sensitive(const ChainResult& chain) {
+    const std::optional<double> claimed = step_value(chain, "recursive_split", "claimed");
+    return claimed && *claimed < kEpsSensitive;
 }
 
 EpsCheck check_eps(const ChainResult& chain,
                    const ChainParams& p,
                    const std::vector<double>& factors) {
     const io::Blob& labelled = chain.labelled;
-    double eps_used = p.dbscan.eps;
-    for (const StepRecord& step : chain.steps) {
-        for (const auto& value : step.values) {
-            if (step.name == "dbscan" && value.first == "eps") {
-                eps_used = value.second;
-            }
-        }
-    }
+    const double eps_used = step_value(chain, "dbscan", "eps").value_or(p.dbscan.eps);
     std::vector<double> tried = factors;
     tried.push_back(1.0);
     std::sort(tried.begin(), tried.end());
