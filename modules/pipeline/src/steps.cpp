@@ -234,6 +234,12 @@ constexpr double kTooFewForABall = 0.25 / kSolidBallPoints;
 /// below it (3 more found no centre), 1 of the 697 counted within 20 % (0.38, a degraded peach
 /// at 2 spacings).
 constexpr double kFewClaimed = 0.4;
+/// The first fruit radius the normals gave was replaced by one this many times smaller (its
+/// centres claimed more of the points): two sizes fit, a fruit's and likely a bunch's. Over the
+/// 740 scored scenes of the condition matrix 32 replaced the first radius; the 5 with a ratio
+/// of 2 or more (2.3-4.6: grape and truss bunches sampled in the volume at 2 spacings a radius)
+/// counted 97-206 of 80-200, 2 of them off by more than 20 %; below 2 (1.15-1.46) 5 of 27.
+constexpr double kTwoSizes = 2.0;
 /// A given fruit radius more than 1/kGivenTooLarge times the one the points' normals measure is
 /// likely a diameter, or in other units. Over the 740 scenes of the condition matrix given their
 /// true median radius, the measured one was 0.60-1.08 of it at 3 spacings a radius and more
@@ -286,6 +292,9 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         if (p.fruit_radius > 0) {
             step.record.values.emplace_back("measured_radius", r.measured_radius);
         }
+        if (r.larger_radius > 0) {
+            step.record.values.emplace_back("larger_radius", r.larger_radius);
+        }
         step.record.rule = r.solid ? "solid fruit: their outer layer voted" : "fruit surfaces";
         const double expected = kSolidBallPoints * std::pow(r.fruit_radius / r.spacing, 3);
         const double typical = median_cluster_points(step.blob, r.cluster_count);
@@ -307,6 +316,13 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                 format_number(r.measured_radius) +
                 " the points' normals measure: is it a diameter, or in other units? (too "
                 "large a radius joins neighbouring fruit into one)");
+        }
+        if (r.larger_radius >= kTwoSizes * r.fruit_radius) {
+            step.warnings.push_back(
+                "two fruit sizes fit these points: the normals first gave a fruit radius of " +
+                format_number(r.larger_radius) + ", whose centres left many points unclaimed, " +
+                "and the count uses " + format_number(r.fruit_radius) +
+                " (bunches of small fruit?); give --fruit-radius if you know the fruit's size");
         }
         if (r.peaks > 0 && r.claimed < kFewClaimed) {
             step.warnings.push_back(

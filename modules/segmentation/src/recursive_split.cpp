@@ -108,6 +108,7 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     r.solid = v.solid;
     r.claimed = v.claimed;
     r.measured_radius = v.measured_radius;
+    r.larger_radius = v.larger_radius;
     return r;
 }
 

@@ -681,6 +681,12 @@ void SphereVoteParams::validate() const {
     if (!(solid_refit >= 1 && std::isfinite(solid_refit))) {
         throw InvalidArgument("sphere_vote: solid_refit must be >= 1");
     }
+    if (!(recheck_below >= 0 && recheck_below <= 1)) {
+        throw InvalidArgument("sphere_vote: recheck_below must be in [0, 1]");
+    }
+    if (!(recheck_gain >= 0 && recheck_gain < 1)) {
+        throw InvalidArgument("sphere_vote: recheck_gain must be in [0, 1)");
+    }
     if (!(min_support >= 0 && min_support <= 1)) {
         throw InvalidArgument("sphere_vote: min_support must be in [0, 1]");
     }
@@ -806,9 +812,14 @@ SphereVoteResult sphere_vote(const XyzView& points,
         return done();
     }
     // a solid's refit below starts again from the clusters
-    const std::vector<std::uint32_t> clusters =
-        r.solid && r.estimated ? labels : std::vector<std::uint32_t>{};
+    const std::vector<std::uint32_t> clusters = r.estimated ? labels : std::vector<std::uint32_t>{};
     assign(points, members, labels, peaks, params, R);
+    const auto share = [&](const std::vector<std::uint32_t>& lab, std::size_t fruit) {
+        const auto n = std::count_if(members.begin(), members.end(), [&](std::uint32_t i) {
+            return lab[i] >= 1 && lab[i] <= fruit;
+        });
+        return static_cast<double>(n) / static_cast<double>(members.size());
+    };
     // Solid fruit: R from the outer layer's normals reads short (about 0.65-0.8 of the fruit's in
     // random volumes, and a fruit of 3 spacings then splits in two). The points given to each
     // centre tell the size: in a filled ball the median distance from the centre is R·0.5^(1/3).
@@ -839,11 +850,38 @@ SphereVoteResult sphere_vote(const XyzView& points,
             }
         }
     }
+    r.claimed = share(labels, peaks.size());
+    // Bunches read as fruit: where the centres leave points unclaimed, R may be a bunch's (its
+    // normal lines meet at the bunch's scale; a solid bunch's points spread as one ball's). R is
+    // measured again from normals of a quarter of it (where a smaller fruit's curvature shows),
+    // and the smaller R is taken when its centres claim more of the points; up to three times.
+    if (r.estimated) {
+        for (int k = 0; k < 3 && r.claimed < params.recheck_below; ++k) {
+            const double smaller = measured(0.5 * R);
+            if (!(smaller > 0 && smaller < R / 1.1)) {
+                break;
+            }
+            std::vector<Peak> pk = vote(smaller);
+            if (pk.empty()) {
+                break;
+            }
+            std::vector<std::uint32_t> lab = clusters;
+            assign(points, members, lab, pk, params, smaller);
+            const double c = share(lab, pk.size());
+            if (!(c > r.claimed + params.recheck_gain)) {
+                break;
+            }
+            if (r.larger_radius == 0) {
+                r.larger_radius = R;
+            }
+            R = smaller;
+            r.fruit_radius = R;
+            peaks = std::move(pk);
+            labels = std::move(lab);
+            r.claimed = c;
+        }
+    }
     r.peaks = static_cast<std::uint32_t>(peaks.size());
-    const auto claimed = std::count_if(members.begin(), members.end(), [&](std::uint32_t i) {
-        return labels[i] >= 1 && labels[i] <= r.peaks;
-    });
-    r.claimed = static_cast<double>(claimed) / static_cast<double>(members.size());
     return done();
 }
 

@@ -58,7 +58,8 @@ struct RecursiveSplitResult {
     bool solid = false;           ///< spheres rule: solid fruit (their outer layer voted)
     double claimed = 0;           ///< spheres rule: share of the points given to a fruit centre
     double measured_radius = 0;   ///< spheres rule, radius given: the one the points give (0: none)
-    double hollow_radius = 0;     ///< cores rule: fruit radius estimated on hollow clusters
+    double larger_radius = 0;  ///< spheres rule: a first estimate replaced as a bunch's (0: none)
+    double hollow_radius = 0;  ///< cores rule: fruit radius estimated on hollow clusters
 };
 
 /// Recursive geometric splitting (paper 2.3.3): clusters violating both thresholds are split by

@@ -32,6 +32,11 @@ struct SphereVoteParams {
     /// Solids: vote again with the size the assigned points give (their median distance from
     /// their centre, as in a filled ball) when it exceeds R by this factor
     double solid_refit = 1.15;
+    /// An estimated R whose centres claim less than this share of the clustered points is
+    /// measured again at a smaller scale (it may be a bunch's) ...
+    double recheck_below = 0.95;
+    /// ... and the smaller R taken when its centres claim at least this much more of the points
+    double recheck_gain = 0.02;
     /// DBSCAN left fragments when its median cluster has fewer points: the first rough fruit
     /// size is then taken over points, not clusters (pc_fruitcount warns below the same size)
     double fragment_points = 40;
@@ -51,6 +56,9 @@ struct SphereVoteResult {
     bool estimated = false;   ///< R was estimated from the cloud
     /// With a given R: the radius the points' normals give on their own (0: none), a check
     double measured_radius = 0;
+    /// An estimated R that was replaced by a smaller one whose centres claimed more points (the
+    /// first was likely a bunch's); 0 when the first estimate stood
+    double larger_radius = 0;
     bool solid = false;  ///< solid fruit (their outer layer voted), else surfaces
     double claimed = 0;  ///< share of the clustered points given to a fruit centre
 };
