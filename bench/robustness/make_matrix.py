@@ -6,8 +6,8 @@ Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
 split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
-'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-7'
-(741-840) each after the one before."""
+'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-8'
+(841-940) each after the one before."""
 import random
 import os
 
@@ -94,6 +94,11 @@ LATER_PARTS = [
     ('held-out-7', 2032, 'apricot', (0.022, '--species apple --fruit-radius 0.022 --bunch-min 1 '
      '--bunch-max 2 --touch-gap 0.004 --fruit-count 100 --canopy 0.7,0.7,0.55'),
      'yellow-green', (175, 190, 60)),
+    # 8 (session 24): fig-like, 30 mm, single or in bunches of up to 3, interpenetrating by up
+    # to 10 % of the radius (the issue's limit); violet fruit
+    ('held-out-8', 2033, 'fig', (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 '
+     '--bunch-max 3 --touch-gap 0.001 --overlap 0.1 --fruit-count 70 --canopy 0.7,0.7,0.55'),
+     'violet', (120, 70, 140)),
 ]
 families, colours, first = dict(FAMILIES), dict(COLOURS), 241
 for part, seed, family, spec, colour, rgb in LATER_PARTS:
