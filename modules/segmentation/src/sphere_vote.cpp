@@ -790,7 +790,6 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
         r.estimated = true;
     }
-    r.fruit_radius = R;
 
     // Each point votes for the centres at p ± R n; the peaks are the fruit.
     const auto vote = [&](double radius) {
@@ -807,13 +806,31 @@ SphereVoteResult sphere_vote(const XyzView& points,
         return votes.peaks(params.peak_radius * radius, params.peak_separation * radius,
                            params.min_support, params.max_alignment, s, radius);
     };
-    std::vector<Peak> peaks = vote(R);
+    // The peaks at a radius, and the members given to them, starting again from the clusters
+    // every time (a solid's refit and the second look below try other radii).
+    struct Fit {
+        std::vector<Peak> peaks;
+        std::vector<std::uint32_t> labels;
+    };
+    const std::vector<std::uint32_t> clusters = labels;
+    const auto attempt = [&](double radius) {
+        Fit f{vote(radius), clusters};
+        if (!f.peaks.empty()) {
+            assign(points, members, f.labels, f.peaks, params, radius);
+        }
+        return f;
+    };
+    std::vector<Peak> peaks;
+    const auto take = [&](Fit&& f, double radius) {
+        peaks = std::move(f.peaks);
+        labels = std::move(f.labels);
+        R = radius;
+        r.fruit_radius = R;
+    };
+    take(attempt(R), R);
     if (peaks.empty()) {
         return done();
     }
-    // a solid's refit below starts again from the clusters
-    const std::vector<std::uint32_t> clusters = r.estimated ? labels : std::vector<std::uint32_t>{};
-    assign(points, members, labels, peaks, params, R);
     const auto share = [&](const std::vector<std::uint32_t>& lab, std::size_t fruit) {
         const auto n = std::count_if(members.begin(), members.end(), [&](std::uint32_t i) {
             return lab[i] >= 1 && lab[i] <= fruit;
@@ -838,15 +855,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
             const double filled = percentile(d, 50) / std::cbrt(0.5);
             const double q25 = percentile(d, 25), q75 = percentile(d, 75);
             if (q25 < 0.8 * q75 && filled > params.solid_refit * R) {
-                R = filled;
-                r.fruit_radius = R;
-                peaks = vote(R);
-                labels = clusters;
+                take(attempt(filled), filled);
                 if (peaks.empty()) {
-                    r.peaks = 0;
                     return done();
                 }
-                assign(points, members, labels, peaks, params, R);
             }
         }
     }
@@ -861,23 +873,15 @@ SphereVoteResult sphere_vote(const XyzView& points,
             if (!(smaller > 0 && smaller < R / 1.1)) {
                 break;
             }
-            std::vector<Peak> pk = vote(smaller);
-            if (pk.empty()) {
-                break;
-            }
-            std::vector<std::uint32_t> lab = clusters;
-            assign(points, members, lab, pk, params, smaller);
-            const double c = share(lab, pk.size());
+            Fit f = attempt(smaller);
+            const double c = f.peaks.empty() ? 0 : share(f.labels, f.peaks.size());
             if (!(c > r.claimed + params.recheck_gain)) {
                 break;
             }
             if (r.larger_radius == 0) {
                 r.larger_radius = R;
             }
-            R = smaller;
-            r.fruit_radius = R;
-            peaks = std::move(pk);
-            labels = std::move(lab);
+            take(std::move(f), smaller);
             r.claimed = c;
         }
     }
