@@ -201,12 +201,15 @@ TEST(PcFruitcount, ColourWordsRulesAndAGivenRadiusReachTheirSteps) {
     EXPECT_EQ(word.code, 2);
     EXPECT_NE(word.err.find("--fruit-color must be auto, mask, red"), std::string::npos)
         << word.err;
-    // A known fruit radius is used as given, and the split's record says so.
-    const RunResult given = run_shell("@pc_fruitcount --fruit-radius 0.02 -i " + kSample);
+    // A known fruit radius is a prior the points may lower by up to a tenth; the split's record
+    // and note say which radius was used.
+    const RunResult given = run_shell("@pc_fruitcount -v --fruit-radius 0.02 -i " + kSample);
     ASSERT_EQ(given.code, 0) << given.err;
     const auto g = nlohmann::json::parse(given.out);
     EXPECT_EQ(g["steps"].back()["step"], "recursive_split");
-    EXPECT_EQ(g["steps"].back()["fruit_radius"], 0.02);
+    EXPECT_GE(g["steps"].back()["fruit_radius"].get<double>(), 0.9 * 0.02);
+    EXPECT_LE(g["steps"].back()["fruit_radius"].get<double>(), 0.02);
+    EXPECT_NE(given.err.find("from the given 0.02)"), std::string::npos) << given.err;
     EXPECT_EQ(g["count"], sample_fruit_count());
 }
 

@@ -1,4 +1,5 @@
 #include <charconv>
+#include <cmath>
 
 #include <pc/core/error.h>
 
@@ -7,6 +8,16 @@ namespace pc {
 std::string format_number(double value) {
     char buf[64];
     const auto res = std::to_chars(buf, buf + sizeof buf, value);
+    return std::string(buf, res.ptr);
+}
+
+std::string format_rounded(double value, int digits) {
+    if (std::abs(value) >= std::pow(10.0, digits)) {  // 1234.5 -> "1235", not "1.23e+03"
+        return format_number(std::round(value));
+    }
+    char buf[64];
+    const auto res =
+        std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, digits);
     return std::string(buf, res.ptr);
 }
 

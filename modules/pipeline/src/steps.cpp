@@ -155,7 +155,7 @@ Step apply_knn_outlier(io::Blob in, const filters::KnnOutlierParams& p, const Kn
     for (auto f : r.outlier) {
         outliers += f;
     }
-    const std::string note = "knn_outlier: threshold " + format_number(r.threshold) + ", " +
+    const std::string note = "knn_outlier: threshold " + format_rounded(r.threshold) + ", " +
                              std::to_string(outliers) + " of " + std::to_string(in.size()) +
                              " points are outliers";
     if (!o.mark_field.empty()) {
@@ -186,15 +186,15 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
                    "no eps knee; ";
         } else {
             p.eps = segmentation::estimate_eps(points.view(), p.min_points);
-            note = "dbscan: eps knee = " + format_number(p.eps) + "; ";
+            note = "dbscan: eps knee = " + format_rounded(p.eps) + "; ";
         }
     } else if (eps.mode == EpsRule::Mode::kSpacing) {
         const double s = search::median_spacing(io::XyzPoints(in).view());
         values.emplace_back("spacing", s);
         // Fewer than two distinct points: no spacing; only coincident points can be neighbours.
         p.eps = s > 0 ? eps.factor * s : std::numeric_limits<double>::min();
-        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_number(s) +
-               " = " + format_number(p.eps) + "; ";
+        note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_rounded(s) +
+               " = " + format_rounded(p.eps) + "; ";
     }
     const segmentation::DbscanResult r = segmentation::dbscan(io::XyzSortable(in).records(), p);
     std::size_t noise = 0;
@@ -202,7 +202,7 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
         noise += l == segmentation::kNoise;
     }
     note += "dbscan: " + std::to_string(r.cluster_count) + " clusters, " + std::to_string(noise) +
-            " noise points (eps " + format_number(p.eps) + ", min_points " +
+            " noise points (eps " + format_rounded(p.eps) + ", min_points " +
             std::to_string(p.min_points) + ")";
     io::set_field(in, "label", r.labels);
     values.emplace_back("eps", p.eps);
@@ -211,7 +211,7 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
     if (static_cast<double>(noise) > kNearlyAll * static_cast<double>(r.labels.size())) {
         step.warnings.push_back(
             "dbscan left " + std::to_string(noise) + " of " + std::to_string(r.labels.size()) +
-            " points as noise (eps " + format_number(p.eps) + ", min_points " +
+            " points as noise (eps " + format_rounded(p.eps) + ", min_points " +
             std::to_string(p.min_points) +
             "): eps is small for this cloud's point spacing; try --eps spacing");
     }
@@ -269,17 +269,20 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     io::set_field(in, "label", r.labels);
     const bool spheres = p.rule == segmentation::SplitRule::kSpheres;
     const std::string how =
-        spheres ? "fruit centres found by normals voting (spacing " + format_number(r.spacing) +
-                      ", fruit radius " + format_number(r.fruit_radius) +
-                      (p.fruit_radius > 0 ? " given" : " estimated") + ")"
+        spheres ? "fruit centres found by normals voting (spacing " + format_rounded(r.spacing) +
+                      ", fruit radius " + format_rounded(r.fruit_radius) +
+                      (p.fruit_radius > 0 ? " from the given " + format_number(p.fruit_radius)
+                                          : " estimated") +
+                      ")"
         : p.rule == segmentation::SplitRule::kCores
-            ? "clusters cut at their cores" + std::string(" (spacing ") + format_number(r.spacing) +
-                  ", estimated fruit radius " + format_number(r.fruit_radius) +
-                  (r.hollow_radius > 0 ? ", on hollow surfaces " + format_number(r.hollow_radius)
+            ? "clusters cut at their cores" + std::string(" (spacing ") +
+                  format_rounded(r.spacing) + ", estimated fruit radius " +
+                  format_rounded(r.fruit_radius) +
+                  (r.hollow_radius > 0 ? ", on hollow surfaces " + format_rounded(r.hollow_radius)
                                        : "") +
                   ")"
-            : "splits (thresholds: points > " + format_number(r.size_threshold) +
-                  ", AABB volume > " + format_number(r.volume_threshold) + ")";
+            : "splits (thresholds: points > " + format_rounded(r.size_threshold) +
+                  ", AABB volume > " + format_rounded(r.volume_threshold) + ")";
     const std::size_t n = in.size();
     Step step{std::move(in),
               "recursive_split: " + std::to_string(spheres ? r.peaks : r.splits) + " " + how +
@@ -301,9 +304,9 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         if (r.solid && r.peaks > 0 && r.fruit_radius > 0 && r.spacing > 0 &&
             typical < kTooFewForABall * expected) {
             step.warnings.push_back(
-                "the median fruit holds " + format_number(typical) +
+                "the median fruit holds " + format_rounded(typical) +
                 " points, far fewer than a solid ball of the fruit radius " +
-                format_number(r.fruit_radius) + " at spacing " + format_number(r.spacing) +
+                format_rounded(r.fruit_radius) + " at spacing " + format_rounded(r.spacing) +
                 " would (about " + format_number(std::round(expected)) +
                 "): the radius may be a bunch's, each bunch counted as one fruit; give "
                 "--fruit-radius if you know the fruit's size");
@@ -313,33 +316,33 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
             step.warnings.push_back(
                 "the given fruit radius " + format_number(p.fruit_radius) + " is more than " +
                 format_number(std::round(10 / kGivenTooLarge) / 10) + " times the " +
-                format_number(r.measured_radius) +
+                format_rounded(r.measured_radius) +
                 " the points' normals measure: is it a diameter, or in other units? (too "
                 "large a radius joins neighbouring fruit into one)");
         }
         if (r.larger_radius >= kTwoSizes * r.fruit_radius) {
             step.warnings.push_back(
                 "two fruit sizes fit these points: the normals first gave a fruit radius of " +
-                format_number(r.larger_radius) + ", whose centres left many points unclaimed, " +
-                "and the count uses " + format_number(r.fruit_radius) +
+                format_rounded(r.larger_radius) + ", whose centres left many points unclaimed, " +
+                "and the count uses " + format_rounded(r.fruit_radius) +
                 " (bunches of small fruit?); give --fruit-radius if you know the fruit's size");
         }
         if (r.peaks > 0 && r.claimed < kFewClaimed) {
             step.warnings.push_back(
                 "fruit centres took only " + format_number(std::round(100 * r.claimed)) +
-                " % of the clustered points (fruit radius " + format_number(r.fruit_radius) +
+                " % of the clustered points (fruit radius " + format_rounded(r.fruit_radius) +
                 "): the rest was counted by its DBSCAN clusters; is the fruit radius right "
                 "(--fruit-radius)?");
         }
         if (r.cluster_count > 0 && !(r.fruit_radius > 0)) {
             step.warnings.push_back(
                 "recursive_split could not estimate the fruit radius (spacing " +
-                format_number(r.spacing) +
+                format_rounded(r.spacing) +
                 "): clusters were left whole; give --fruit-radius if you know the fruit's size");
         } else if (r.cluster_count > 0 && r.peaks == 0) {
             step.warnings.push_back(
                 "recursive_split found no fruit centre (fruit radius " +
-                format_number(r.fruit_radius) +
+                format_rounded(r.fruit_radius) +
                 "): clusters were left whole; is the fruit radius right (--fruit-radius)?");
         }
     }
@@ -350,7 +353,7 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         if (r.cluster_count > 0 && !(r.fruit_radius > 0) && !(r.hollow_radius > 0)) {
             step.warnings.push_back(
                 "recursive_split could not estimate the fruit radius (spacing " +
-                format_number(r.spacing) +
+                format_rounded(r.spacing) +
                 "): no cluster was cut; if DBSCAN shattered the fruit, try a larger --eps, or "
                 "--preset paper-dense");
         }
@@ -490,7 +493,7 @@ EpsCheck check_eps(const ChainResult& chain,
         std::string counts;
         for (std::size_t k = 0; k < out.counts.size(); ++k) {
             counts += (k ? ", " : "") + std::to_string(out.counts[k]) + " at eps " +
-                      format_number(out.eps[k]);
+                      format_rounded(out.eps[k]);
         }
         out.warning = "the count swings by more than 2x under a small change of eps (" + counts +
                       (p.eps.mode == EpsRule::Mode::kSpacing
@@ -515,7 +518,7 @@ std::vector<std::string> count_warnings(const segmentation::ClusterSummary& s, s
     }
     const double typical = sizes.empty() ? 0.0 : median(sizes);
     if (!sizes.empty() && typical < 40) {
-        w.push_back("the median cluster has only " + format_number(typical) +
+        w.push_back("the median cluster has only " + format_rounded(typical) +
                     " points: at this resolution touching fruit merge or split by chance; treat "
                     "the count as rough");
     }

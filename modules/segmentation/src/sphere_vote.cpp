@@ -681,6 +681,9 @@ void SphereVoteParams::validate() const {
     if (!(solid_refit >= 1 && std::isfinite(solid_refit))) {
         throw InvalidArgument("sphere_vote: solid_refit must be >= 1");
     }
+    if (!(prior_low > 0 && prior_low <= 1)) {
+        throw InvalidArgument("sphere_vote: prior_low must be in (0, 1]");
+    }
     if (!(recheck_below >= 0 && recheck_below <= 1)) {
         throw InvalidArgument("sphere_vote: recheck_below must be in [0, 1]");
     }
@@ -783,6 +786,12 @@ SphereVoteResult sphere_vote(const XyzView& points,
     double R = params.fruit_radius;
     if (R > 0) {
         r.measured_radius = measured(rough_size(all, fragments));  // a check of the given one
+        // The given R is a prior: the normals measure from it, and may lower it by up to
+        // 1 - prior_low (a fruit radius known roughly, or a tree's largest fruit; the measurement
+        // is not allowed to raise it, as normals on noisy surfaces and solids read short).
+        if (const double m = measured(R); m > 0) {
+            R = std::clamp(m, params.prior_low * R, R);
+        }
     } else {
         R = measured(first);
         if (!(R > 0)) {

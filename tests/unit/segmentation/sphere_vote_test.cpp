@@ -309,12 +309,24 @@ TEST(SphereVote, BunchesOfSmallSolidFruitAreNotReadAsOneFruit) {
     EXPECT_NEAR(static_cast<double>(again.cluster_count), 156.0, 0.15 * 156);
 }
 
-TEST(SphereVote, AGivenRadiusIsUsedAsIs) {
+TEST(SphereVote, AGivenRadiusIsAPriorTheNormalsMayLowerByATenth) {
     const Scene s = hollow(10);
-    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 10});
-    EXPECT_EQ(r.fruit_radius, 10);
-    EXPECT_FALSE(r.estimated);
-    EXPECT_EQ(r.cluster_count, 7u);
+    const SphereVoteResult exact = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 10});
+    EXPECT_GE(exact.fruit_radius, 9);
+    EXPECT_LE(exact.fruit_radius, 10);
+    EXPECT_FALSE(exact.estimated);
+    EXPECT_EQ(exact.cluster_count, 7u);
+    // 20 % too large: the normals (which measure about 10) pull it to the band's edge
+    const SphereVoteResult large = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 12});
+    EXPECT_NEAR(large.fruit_radius, 10.8, 1e-9);
+    EXPECT_EQ(large.cluster_count, 7u);
+    const SphereVoteResult as_is =
+        sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 12, .prior_low = 1});
+    EXPECT_EQ(as_is.fruit_radius, 12);
+    // too small: never raised
+    const SphereVoteResult small = sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 8});
+    EXPECT_GE(small.fruit_radius, 7.2);
+    EXPECT_LE(small.fruit_radius, 8);
 }
 
 TEST(SphereVote, FragmentsOfOneFruitJoinAndFlatLeftoversAreDropped) {
@@ -407,6 +419,8 @@ TEST(SphereVote, NoiseStaysNoiseAndBadInputIsRefused) {
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.fruit_radius = -1}),
                  InvalidArgument);
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.cell = 0}), InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.prior_low = 0}),
+                 InvalidArgument);
 }
 
 }  // namespace

@@ -27,6 +27,10 @@ public:
 /// Shortest text that reads back to the same double ("0.05", not "0.050000000000000003").
 [[nodiscard]] std::string format_number(double value);
 
+/// A measured value for people to read: `digits` significant digits ("0.0923", not
+/// "0.09228739930133324"; "1235" for 1234.5). Values the user gave are shown with format_number.
+[[nodiscard]] std::string format_rounded(double value, int digits = 3);
+
 /// `text` as one CSV cell (RFC 4180): quoted, with quotes doubled, when it holds a comma, a quote
 /// or a line break; as it is otherwise.
 [[nodiscard]] std::string csv_cell(const std::string& text);

@@ -32,6 +32,9 @@ struct SphereVoteParams {
     /// Solids: vote again with the size the assigned points give (their median distance from
     /// their centre, as in a filled ball) when it exceeds R by this factor
     double solid_refit = 1.15;
+    /// A given fruit_radius is a prior: R is the radius the normals measure starting from it,
+    /// kept within [prior_low, 1] x the given one (1: the given R as it is)
+    double prior_low = 0.9;
     /// An estimated R whose centres claim less than this share of the clustered points is
     /// measured again at a smaller scale (it may be a bunch's) ...
     double recheck_below = 0.95;
@@ -52,8 +55,9 @@ struct SphereVoteResult {
     std::uint32_t cluster_count = 0;
     std::uint32_t peaks = 0;  ///< fruit centres found
     double spacing = 0;       ///< s: median nearest-neighbour distance of the points that voted
-    double fruit_radius = 0;  ///< R used (the prior, or the estimate; 0 when none was possible)
-    bool estimated = false;   ///< R was estimated from the cloud
+    double fruit_radius =
+        0;                   ///< R used (from the prior, or the estimate; 0 when none was possible)
+    bool estimated = false;  ///< R was estimated from the cloud
     /// With a given R: the radius the points' normals give on their own (0: none), a check
     double measured_radius = 0;
     /// An estimated R that was replaced by a smaller one whose centres claimed more points (the
@@ -69,7 +73,8 @@ struct SphereVoteResult {
 ///     inside of a solid fruit does not).
 ///  2. R, unless given: where the normal lines of nearby points meet (a sphere's normals all
 ///     pass through its centre, at distance R): the mode of those distances over many pairs,
-///     starting from the median cluster size and refitted once at the scale it gives.
+///     starting from the median cluster size and refitted once at the scale it gives. A given R
+///     is a prior: measured the same way starting from it, and used within [prior_low, 1] × it.
 ///  3. Votes: each point votes for the centres at p ± R·n (the sign of a normal is unknown; the
 ///     wrong side scatters over a sphere of 2R). Peaks of the vote density (cells of cell × R,
 ///     local maxima of 3×3×3 sums, refined by mean shift within peak_radius × R), strongest first,
