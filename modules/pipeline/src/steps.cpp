@@ -196,14 +196,16 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
         note = "dbscan: eps = " + format_number(eps.factor) + " x spacing " + format_rounded(s) +
                " = " + format_rounded(p.eps) + "; ";
     }
+    // A rule's eps is a measurement (3 digits); a typed one prints as the user gave it.
+    const std::string eps_text =
+        eps.mode == EpsRule::Mode::kFixed ? format_number(p.eps) : format_rounded(p.eps);
     const segmentation::DbscanResult r = segmentation::dbscan(io::XyzSortable(in).records(), p);
     std::size_t noise = 0;
     for (auto l : r.labels) {
         noise += l == segmentation::kNoise;
     }
     note += "dbscan: " + std::to_string(r.cluster_count) + " clusters, " + std::to_string(noise) +
-            " noise points (eps " + format_rounded(p.eps) + ", min_points " +
-            std::to_string(p.min_points) + ")";
+            " noise points (eps " + eps_text + ", min_points " + std::to_string(p.min_points) + ")";
     io::set_field(in, "label", r.labels);
     values.emplace_back("eps", p.eps);
     Step step{
@@ -211,8 +213,7 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
     if (static_cast<double>(noise) > kNearlyAll * static_cast<double>(r.labels.size())) {
         step.warnings.push_back(
             "dbscan left " + std::to_string(noise) + " of " + std::to_string(r.labels.size()) +
-            " points as noise (eps " + format_rounded(p.eps) + ", min_points " +
-            std::to_string(p.min_points) +
+            " points as noise (eps " + eps_text + ", min_points " + std::to_string(p.min_points) +
             "): eps is small for this cloud's point spacing; try --eps spacing");
     }
     return step;

@@ -62,6 +62,16 @@ TEST(Steps, DbscanAddsALabelFieldAndKnnCanMark) {
     EXPECT_NE(io::find_field(m.blob, "outlier"), nullptr);
 }
 
+TEST(Steps, ATypedEpsPrintsAsGivenARuleEpsToThreeDigits) {
+    const io::Blob in = line_cloud(20);
+    const Step typed = apply_dbscan(in, {.eps = 0.012345, .min_points = 2});
+    EXPECT_NE(typed.note.find("(eps 0.012345,"), std::string::npos) << typed.note;
+    const Step rule =
+        apply_dbscan(in, {.min_points = 2}, {.mode = EpsRule::Mode::kSpacing, .factor = 1.2345});
+    EXPECT_EQ(rule.note.find("0.012345"), std::string::npos) << rule.note;
+    EXPECT_NE(rule.note.find("x spacing "), std::string::npos) << rule.note;
+}
+
 /// Blobs of short random walks (steps of at most 0.005 per axis, broken every 7th point by a
 /// scattered one; some NaN): x y z only (the grids sort these records in place) and x y z + 2
 /// more fields (the grids copy x y z out).
