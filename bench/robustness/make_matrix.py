@@ -6,8 +6,8 @@ Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
 split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
-'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-8'
-(841-940) each after the one before."""
+'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-9'
+(941-1040) each after the one before."""
 import random
 import os
 
@@ -99,6 +99,11 @@ LATER_PARTS = [
     ('held-out-8', 2033, 'fig', (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 '
      '--bunch-max 3 --touch-gap 0.001 --overlap 0.1 --fruit-count 70 --canopy 0.7,0.7,0.55'),
      'violet', (120, 70, 140)),
+    # 9 (session 25): lychee-like, 16 mm, bunches of 4-12 touching, up to 5 % interpenetrating
+    # (the issue's largest bunches); near-black red fruit (value 0.22: dark cherries, black grapes)
+    ('held-out-9', 2034, 'lychee', (0.016, '--species plum --fruit-radius 0.016 --bunch-min 4 '
+     '--bunch-max 12 --touch-gap 0.001 --overlap 0.05 --fruit-count 150 --canopy 0.6,0.6,0.5'),
+     'black-red', (55, 15, 25)),
 ]
 families, colours, first = dict(FAMILIES), dict(COLOURS), 241
 for part, seed, family, spec, colour, rgb in LATER_PARTS:
