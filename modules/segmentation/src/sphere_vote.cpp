@@ -46,7 +46,8 @@ struct Normals {
 };
 
 /// Normals of every `every`-th sampled point (the others get weight 0), from all the sample's
-/// points.
+/// points, whatever their cluster: DBSCAN may cut one fruit into slices (scan lines, the sparse
+/// side of an SfM fruit), and a plane fitted to a slice alone lies across it.
 Normals fit_normals(const Sample& s, double h, std::size_t every = 1) {
     const search::Grid grid(s.view, h);
     Normals out{std::vector<V3>(s.view.size, V3::Zero()), std::vector<float>(s.view.size, 0.0f),
@@ -60,12 +61,10 @@ Normals fit_normals(const Sample& s, double h, std::size_t every = 1) {
         Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
         int n = 0;
         grid.for_each_within(p, h, [&](std::uint32_t j, double) {
-            if (s.label[j] == s.label[i]) {
-                const V3 q = vec(s.view[j]) - o;
-                sum += q;
-                m += q * q.transpose();
-                ++n;
-            }
+            const V3 q = vec(s.view[j]) - o;
+            sum += q;
+            m += q * q.transpose();
+            ++n;
         });
         if (n < 6) {
             continue;

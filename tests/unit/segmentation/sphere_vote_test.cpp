@@ -235,6 +235,25 @@ TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {
     }
 }
 
+TEST(SphereVote, SlicesThatDbscanCutApartShareTheirFruitsNormals) {
+    // As DBSCAN leaves scan lines, or the sparse parts of an SfM fruit, when eps is under their
+    // gaps: every slab 3 spacings wide a cluster of its own. A normal is the surface's, fitted to
+    // every clustered point around it: fitted within the slab alone (a strip 3 wide) it lay
+    // across the slab, and the slabs were counted as fruit.
+    Scene s = hollow(10);
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        s.label[i] =
+            100 * s.label[i] + static_cast<std::uint32_t>(std::floor(s.cloud[i].x / 3) + 10);
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.peaks, 7u);
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_NEAR(r.fruit_radius, 10, 1);
+    const long wrong = misassigned(r.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));
+}
+
 TEST(SphereVote, RandomSolidsAreMeasuredByTheirPointsNotTheirOuterLayer) {
     // Points uniform in the volume of each ball (radius 10, about 6 spacings): the outer layer's
     // normals read R short (0.87 here, 0.65-0.8 on the matrix's volume scenes); the points given

@@ -68,9 +68,9 @@ struct SphereVoteResult {
 };
 
 /// Counts fruit as spheres, on solid and surface clouds alike, without medians over clusters:
-///  1. Normals: a plane fitted (PCA) to each sampled point's neighbours of the same cluster
-///     within normal_scale × R; its weight is 1 − λ₁/λ₂ (flat surroundings vote, the isotropic
-///     inside of a solid fruit does not).
+///  1. Normals: a plane fitted (PCA) to each sampled point's clustered neighbours (of any
+///     cluster: DBSCAN may cut a fruit into slices) within normal_scale × R; its weight is 1 −
+///     λ₁/λ₂ (flat surroundings vote, the isotropic inside of a solid fruit does not).
 ///  2. R, unless given: where the normal lines of nearby points meet (a sphere's normals all
 ///     pass through its centre, at distance R): the mode of those distances over many pairs,
 ///     starting from the median cluster size and refitted once at the scale it gives. A given R
