@@ -1,5 +1,6 @@
 // pc_fruitcount: the whole counting chain in one process (colour filter, crop, voxel, kNN outlier,
 // DBSCAN, recursive split, count), with the same labels as the piped chain.
+#include <cmath>
 #include <filesystem>
 
 #include <pc/cli/report.h>
@@ -31,7 +32,10 @@ int main(int argc, char** argv) {
     color.from_preset(chain);
     pc::filters::CropParams crop;
     pc::filters::VoxelParams voxel;
-    pc::filters::KnnOutlierParams knn = *chain.knn;
+    // The kNN step runs when the preset has it (the paper's do, dense does not) or one of its
+    // options is given; its parameters start as the paper's.
+    pc::filters::KnnOutlierParams knn = pl::preset("paper-dense").knn.value();
+    bool knn_on = chain.knn.has_value();
     seg::RecursiveSplitParams split = *chain.split;
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
@@ -50,6 +54,7 @@ int main(int argc, char** argv) {
         crop = chain.crop.value_or(crop);
         voxel = chain.voxel.value_or(voxel);
         knn = chain.knn.value_or(knn);
+        knn_on = chain.knn.has_value();
         split = chain.split.value_or(split);
     });
     pc::tools::bind_color_options(tool, color, "colour: ");
@@ -78,12 +83,37 @@ int main(int argc, char** argv) {
         },
         "voxel: leaf size (enables the voxel step)",
         [&] { return chain.voxel ? pc::format_number(chain.voxel->leaf) : std::string("off"); });
-    tool.option("k", &knn.k, "kNN outlier: neighbours, the point itself NOT counted");
-    tool.option("drop-percentile", &knn.drop_percentile,
-                "kNN outlier: drop mean distance >= P(100-P)");
-    tool.option("std-mul", &knn.std_mul,
-                "kNN outlier: instead drop mean distance > mean + M sigma");
-    tool.flag("no-knn", &no_knn, "skip the kNN outlier filter");
+    tool.option(
+        "k", std::to_string(knn.k),
+        [&](const std::string& s) {
+            const double k = pc::cli::parse_double("k", s);
+            if (!(k >= 1 && k <= 1e6 && k == std::floor(k))) {
+                throw pc::InvalidArgument("--k: a whole number of neighbours >= 1, got '" + s +
+                                          "'");
+            }
+            knn.k = static_cast<std::uint32_t>(k);
+            knn_on = true;
+        },
+        "kNN outlier: neighbours, the point itself NOT counted (enables the step; the paper "
+        "presets run it)",
+        [&] { return std::to_string(knn.k); });
+    tool.option(
+        "drop-percentile", pc::format_number(knn.drop_percentile),
+        [&](const std::string& s) {
+            knn.drop_percentile = pc::cli::parse_double("drop-percentile", s);
+            knn_on = true;
+        },
+        "kNN outlier: drop mean distance >= P(100-P) (enables the step)",
+        [&] { return pc::format_number(knn.drop_percentile); });
+    tool.option(
+        "std-mul", "off",
+        [&](const std::string& s) {
+            knn.std_mul = pc::cli::parse_double("std-mul", s);
+            knn_on = true;
+        },
+        "kNN outlier: instead drop mean distance > mean + M sigma (enables the step)",
+        [&] { return knn.std_mul ? pc::format_number(*knn.std_mul) : std::string("off"); });
+    tool.flag("no-knn", &no_knn, "skip the kNN outlier filter (of a paper preset)");
     tool.option(
         "eps", pl::eps_text(chain.dbscan, chain.eps),
         [&](const std::string& s) { pl::parse_eps(s, chain.dbscan, chain.eps); },
@@ -120,7 +150,7 @@ int main(int argc, char** argv) {
             chain.color.reset();
             chain.fruit_color.reset();
         }
-        chain.knn = no_knn ? std::nullopt : std::optional(knn);
+        chain.knn = knn_on && !no_knn ? std::optional(knn) : std::nullopt;
         chain.split = no_split ? std::nullopt : std::optional(split);
         if (chain.crop) {
             chain.crop = crop;
