@@ -6,8 +6,8 @@ Each line: id|split|family|mode|r_over_s|noise|colour|units|pc_synth arguments
 split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scenes are scored only
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
-'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-9'
-(941-1040) each after the one before."""
+'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-10'
+(1041-1140) each after the one before."""
 import random
 import os
 
@@ -104,6 +104,11 @@ LATER_PARTS = [
     ('held-out-9', 2034, 'lychee', (0.016, '--species plum --fruit-radius 0.016 --bunch-min 4 '
      '--bunch-max 12 --touch-gap 0.001 --overlap 0.05 --fruit-count 150 --canopy 0.6,0.6,0.5'),
      'black-red', (55, 15, 25)),
+    # 10 (session 25): blueberry-like, 7 mm, clusters of 4-10 touching; grey-blue fruit (the
+    # waxy bloom of blueberries and plums: saturation 0.3)
+    ('held-out-10', 2035, 'blueberry', (0.007, '--species plum --fruit-radius 0.007 --bunch-min 4 '
+     '--bunch-max 10 --touch-gap 0.0005 --fruit-count 200 --canopy 0.5,0.5,0.4'),
+     'grey-blue', (105, 115, 150)),
 ]
 families, colours, first = dict(FAMILIES), dict(COLOURS), 241
 for part, seed, family, spec, colour, rgb in LATER_PARTS:
