@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
                 "instead: drop points with mean distance > mean + M * sample sigma");
     tool.option("mark", &out.mark_field, "write 0/1 (1 = outlier) to this U 4 field, drop nothing");
     tool.flag("invert", &out.invert, "keep only the outliers");
-    tool.presets(pl::preset_names(), [&](const std::string& name) { p = *pl::preset(name).knn; });
+    tool.presets(pl::preset_names(), [&](const std::string& name) {
+        p = pl::preset_step(name, &pl::ChainParams::knn, "kNN outlier");
+    });
     tool.epilog("\nNon-finite points are outliers. See docs/tools/pc_knn_outlier.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pc::tools::write_step(io, pl::apply_knn_outlier(io.read(), p, out));

@@ -108,6 +108,14 @@ TEST(PcDbscan, BadEpsIsAUsageError) {
     EXPECT_EQ(run_shell("@pc_dbscan --eps fast -i " + kSample).code, 2);
 }
 
+TEST(PcKnnOutlier, APresetWithoutTheStepIsAUsageError) {
+    // dense (pc_fruitcount's default) has no kNN step: its piped chain leaves the tool out.
+    const RunResult r = run_shell("@pc_knn_outlier --preset dense -i " + kSample);
+    EXPECT_EQ(r.code, 2);
+    EXPECT_NE(r.err.find("--preset: dense has no kNN outlier step"), std::string::npos) << r.err;
+    EXPECT_TRUE(r.out.empty());
+}
+
 TEST(PcColorfilter, CloudWithoutColourIsAClearError) {
     const RunResult r =
         run_shell("@pc_colorfilter --min-mean 0.5", xyz_header("1", "ascii") + "1 2 3\n");
