@@ -33,9 +33,8 @@ int main(int argc, char** argv) {
     pc::filters::CropParams crop;
     pc::filters::VoxelParams voxel;
     // The kNN step runs when the preset has it (the paper's do, dense does not) or one of its
-    // options is given; its parameters start as the paper's.
+    // options is given (as --leaf enables voxel); its parameters start as the paper's.
     pc::filters::KnnOutlierParams knn = pl::preset("paper-dense").knn.value();
-    bool knn_on = chain.knn.has_value();
     seg::RecursiveSplitParams split = *chain.split;
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
@@ -54,7 +53,6 @@ int main(int argc, char** argv) {
         crop = chain.crop.value_or(crop);
         voxel = chain.voxel.value_or(voxel);
         knn = chain.knn.value_or(knn);
-        knn_on = chain.knn.has_value();
         split = chain.split.value_or(split);
     });
     pc::tools::bind_color_options(tool, color, "colour: ");
@@ -92,7 +90,7 @@ int main(int argc, char** argv) {
                                           "'");
             }
             knn.k = static_cast<std::uint32_t>(k);
-            knn_on = true;
+            chain.knn = knn;
         },
         "kNN outlier: neighbours, the point itself NOT counted (enables the step; the paper "
         "presets run it)",
@@ -101,7 +99,7 @@ int main(int argc, char** argv) {
         "drop-percentile", pc::format_number(knn.drop_percentile),
         [&](const std::string& s) {
             knn.drop_percentile = pc::cli::parse_double("drop-percentile", s);
-            knn_on = true;
+            chain.knn = knn;
         },
         "kNN outlier: drop mean distance >= P(100-P) (enables the step)",
         [&] { return pc::format_number(knn.drop_percentile); });
@@ -109,7 +107,7 @@ int main(int argc, char** argv) {
         "std-mul", "off",
         [&](const std::string& s) {
             knn.std_mul = pc::cli::parse_double("std-mul", s);
-            knn_on = true;
+            chain.knn = knn;
         },
         "kNN outlier: instead drop mean distance > mean + M sigma (enables the step)",
         [&] { return knn.std_mul ? pc::format_number(*knn.std_mul) : std::string("off"); });
@@ -150,7 +148,12 @@ int main(int argc, char** argv) {
             chain.color.reset();
             chain.fruit_color.reset();
         }
-        chain.knn = knn_on && !no_knn ? std::optional(knn) : std::nullopt;
+        if (chain.knn) {
+            chain.knn = knn;
+        }
+        if (no_knn) {
+            chain.knn.reset();
+        }
         chain.split = no_split ? std::nullopt : std::optional(split);
         if (chain.crop) {
             chain.crop = crop;
