@@ -38,11 +38,16 @@ std::string truth_json(const std::string& species,
         for (int a = 0; a < 3; ++a) {
             centre[a] = centre[a] * rp.scale + rp.offset[a];
         }
-        fruits.push_back({{"id", f + 1},
-                          {"centre", centre},
-                          {"radius", x.radius * rp.scale},
-                          {"bunch", x.bunch},
-                          {"points", r.fruit_points[f]}});
+        nlohmann::ordered_json fruit = {{"id", f + 1},
+                                        {"centre", centre},
+                                        {"radius", x.radius * rp.scale},
+                                        {"bunch", x.bunch},
+                                        {"points", r.fruit_points[f]}};
+        if (!x.round()) {  // a spheroid: radius is the same-volume sphere's
+            fruit["aspect"] = x.aspect;
+            fruit["axis"] = x.axis;
+        }
+        fruits.push_back(fruit);
     }
     nlohmann::ordered_json j;
     j["generator"] = "pc_synth";
@@ -99,6 +104,11 @@ int main(int argc, char** argv) {
     tool.option("fruit-count", &sp.fruit_count, "number of fruit (the ground-truth count)");
     tool.option("fruit-radius", &sp.fruit_radius, "mean fruit radius, m");
     tool.option("radius-spread", &sp.radius_spread, "radii uniform in radius x (1 +- this)");
+    tool.option("aspect", &sp.aspect,
+                "fruit shape: polar / equatorial half axis of a spheroid (1 sphere, 0.85 apple, "
+                "1.4 lemon); the radius is the same-volume sphere's");
+    tool.option("aspect-spread", &sp.aspect_spread,
+                "aspects uniform in aspect x (1 +- this); axes in random directions");
     tool.option("bunch-min", &sp.bunch_min, "least fruit per bunch");
     tool.option("bunch-max", &sp.bunch_max, "most fruit per bunch");
     tool.option("touch-gap", &sp.touch_gap,

@@ -36,18 +36,25 @@ Vec3 centre_of(const Voxel& x, double v) {
     return {(x.i + 0.5) * v, (x.j + 0.5) * v, (x.k + 0.5) * v};
 }
 
-/// Every lattice voxel whose centre lies inside the fruit (distance <= radius).
+/// Every lattice voxel whose centre lies inside the fruit (a sphere: distance <= radius).
 std::vector<Voxel> fruit_voxels(const Fruit& f, double v) {
     std::vector<Voxel> out;
+    const auto half = [&](int a) {
+        return f.reach({a == 0 ? 1.0 : 0, a == 1 ? 1.0 : 0, a == 2 ? 1.0 : 0});
+    };
     const auto lo = [&](int a) {
-        return static_cast<std::int32_t>(std::floor((f.centre[a] - f.radius) / v));
+        return static_cast<std::int32_t>(std::floor((f.centre[a] - half(a)) / v));
     };
     const auto hi = [&](int a) {
-        return static_cast<std::int32_t>(std::floor((f.centre[a] + f.radius) / v));
+        return static_cast<std::int32_t>(std::floor((f.centre[a] + half(a)) / v));
     };
     const double r2 = f.radius * f.radius;
     const auto inside = [&](std::int32_t i, std::int32_t j, std::int32_t k) {
-        const Vec3 d = sub({(i + 0.5) * v, (j + 0.5) * v, (k + 0.5) * v}, f.centre);
+        const Vec3 q{(i + 0.5) * v, (j + 0.5) * v, (k + 0.5) * v};
+        if (!f.round()) {
+            return f.level(q) <= 1;
+        }
+        const Vec3 d = sub(q, f.centre);
         return dot(d, d) <= r2;
     };
     for (std::int32_t i = lo(0); i <= hi(0); ++i) {
@@ -211,9 +218,7 @@ std::vector<Voxel> degrade(
     const auto spots = 1 + rng.below(3);
     std::vector<Vec3> at;
     for (std::uint64_t s = 0; s < spots; ++s) {
-        const Vec3 d = rng.direction();
-        at.push_back({f.centre[0] + f.radius * d[0], f.centre[1] + f.radius * d[1],
-                      f.centre[2] + f.radius * d[2]});
+        at.push_back(f.at(rng.direction(), f.radius));
     }
     std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t n = 0; n < voxels.size(); ++n) {
@@ -236,7 +241,8 @@ std::vector<Voxel> degrade(
 }
 
 /// Noise bridges: NeRF fills the occluded crevice between touching fruit with loose density. Points
-/// fill the space between the two spheres within 0.6 × the smaller radius of their axis.
+/// fill the space between the two fruit within 0.6 × the smaller radius of their axis (spheroids:
+/// their half widths along the axis stand for the radii).
 void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
     std::vector<std::uint32_t> order(s.fruits.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -244,23 +250,23 @@ void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
               [&](auto a, auto b) { return s.fruits[a].centre[0] < s.fruits[b].centre[0]; });
     double r_max = 0;
     for (const auto& f : s.fruits) {
-        r_max = std::max(r_max, f.radius);
+        r_max = std::max(r_max, f.largest());
     }
     for (std::size_t a = 0; a < order.size(); ++a) {
         const Fruit& fa = s.fruits[order[a]];
         for (std::size_t b = a + 1; b < order.size(); ++b) {
             const Fruit& fb = s.fruits[order[b]];
-            if (fb.centre[0] - fa.centre[0] > fa.radius + r_max * (1 + p.bridge_gap)) {
+            if (fb.centre[0] - fa.centre[0] > fa.largest() + r_max * (1 + p.bridge_gap)) {
                 break;
             }
             const Vec3 axis = sub(fb.centre, fa.centre);
             const double length = std::sqrt(dot(axis, axis));
-            const double small = std::min(fa.radius, fb.radius);
-            if (length - fa.radius - fb.radius >= p.bridge_gap * small ||
-                rng.uniform() >= p.bridge_probability) {
+            const Vec3 d = scaled(axis, 1.0 / length);
+            const double ra = fa.reach(d), rb = fb.reach(d);
+            const double small = std::min(ra, rb);
+            if (length - ra - rb >= p.bridge_gap * small || rng.uniform() >= p.bridge_probability) {
                 continue;
             }
-            const Vec3 d = scaled(axis, 1.0 / length);
             const auto [e1, e2] = basis(d);
             const double reach = 0.6 * small;
             const auto n = static_cast<int>(
@@ -268,8 +274,8 @@ void add_bridges(const Scene& s, const RenderParams& p, Rng& rng, Output& out) {
             const std::uint32_t rgb = out.shade(s.fruit_rgb, 0.85);
             for (int k = 0; k < n; ++k) {
                 const double rho = reach * std::sqrt(rng.uniform()), phi = rng.uniform(0, 2 * kPi);
-                const double from = std::sqrt(fa.radius * fa.radius - rho * rho);
-                const double to = length - std::sqrt(fb.radius * fb.radius - rho * rho);
+                const double from = std::sqrt(ra * ra - rho * rho);
+                const double to = length - std::sqrt(rb * rb - rho * rho);
                 const double t = rng.uniform(from, std::max(from, to));
                 Vec3 q = fa.centre;
                 for (int c = 0; c < 3; ++c) {
@@ -453,13 +459,12 @@ void add_clutter(const Scene& s,
 
 namespace {
 
-/// Fruit of a bunch may interpenetrate: a voxel inside two of them belongs to the one whose
-/// centre is nearer relative to its radius.
+/// Fruit of a bunch may interpenetrate: a voxel inside two of them belongs to the one it lies
+/// deeper in (a sphere: whose centre is nearer relative to its radius).
 void give_shared_voxels_to_one(const Scene& s, double v, std::vector<std::vector<Voxel>>& fruit) {
     std::unordered_map<std::uint64_t, std::pair<double, std::size_t>> owner;
     const auto score = [&](std::size_t f, const Voxel& x) {
-        const Vec3 d = sub(centre_of(x, v), s.fruits[f].centre);
-        return std::sqrt(dot(d, d)) / s.fruits[f].radius;
+        return s.fruits[f].level(centre_of(x, v));
     };
     for (std::size_t f = 0; f < fruit.size(); ++f) {
         for (const auto& x : fruit[f]) {
@@ -480,10 +485,10 @@ Rendered render_lattice(const Scene& s, const RenderParams& p) {
     const double v = p.voxel;
     double r_min = std::numeric_limits<double>::infinity();
     for (const auto& f : s.fruits) {
-        r_min = std::min(r_min, f.radius);
+        r_min = std::min(r_min, f.smallest());
     }
     require(s.fruits.empty() || r_min >= v,
-            "the voxel must not be larger than the smallest fruit radius");
+            "the voxel must not be larger than the smallest fruit radius (half axis)");
     Rendered out;
     Rng rng(p.seed, 2);
     Output emit(out, rng, p.colors);

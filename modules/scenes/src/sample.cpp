@@ -74,28 +74,27 @@ public:
         const Fruit& x = s_.fruits[f];
         const double tone = rng_.uniform(0.85, 1.1), v = p_.voxel, r = x.radius;
         const auto emit = [&](const Vec3& d, double depth, std::size_t copies) {
-            Vec3 q{x.centre[0] + depth * d[0], x.centre[1] + depth * d[1],
-                   x.centre[2] + depth * d[2]};
+            Vec3 q = x.at(d, depth);
             if (inside_other(f, q, depth / r)) {
                 return;
             }
             for (auto& c : q) {
                 c += p_.noise * r * rng_.normal();
             }
-            const std::uint32_t rgb = paint_.fruit(s_.fruit_rgb, tone, d);
+            const std::uint32_t rgb = paint_.fruit(s_.fruit_rgb, tone, x.normal(d));
             for (std::size_t k = 0; k < copies; ++k) {
                 add_point(out_, q, rgb, static_cast<std::uint32_t>(f + 1));
             }
         };
-        const double area = 4 * kPi * r * r / (v * v);
+        const double area = x.area() / (v * v);
         switch (p_.mode) {
             case Mode::kSurface:
                 for (auto n = std::llround(area); n > 0; --n) {
-                    emit(rng_.direction(), r, 1);
+                    emit(on_surface(x), r, 1);
                 }
                 break;
-            case Mode::kVolume:
-                for (auto n = std::llround(area * r / (3 * v)); n > 0; --n) {
+            case Mode::kVolume:  // the sphere's volume: a spheroid's is the same
+                for (auto n = std::llround(4 * kPi * r * r / (v * v) * r / (3 * v)); n > 0; --n) {
                     emit(rng_.direction(), r * std::cbrt(rng_.uniform()), 1);
                 }
                 break;
@@ -132,16 +131,30 @@ public:
     }
 
 private:
-    /// True when q (at `relative` × the radius from fruit f's centre) lies deeper inside another
-    /// fruit of the bunch than in f: interpenetrating fruit show only their outer surfaces.
+    /// A direction of the unit sphere whose image on fruit x is uniform over x's surface: any
+    /// direction for a sphere; for a spheroid, kept with probability the stretch of the area there
+    /// over the largest stretch (rejection).
+    [[nodiscard]] Vec3 on_surface(const Fruit& x) {
+        for (;;) {
+            const Vec3 d = rng_.direction();
+            if (x.round()) {
+                return d;
+            }
+            const double along = dot(d, x.axis), across = std::max(0.0, 1 - along * along);
+            const double stretch = std::sqrt(across + along * along / (x.aspect * x.aspect));
+            if (rng_.uniform() * std::max(1.0, 1 / x.aspect) < stretch) {
+                return d;
+            }
+        }
+    }
+
+    /// True when q (at `relative` × the way from fruit f's centre to its surface) lies deeper
+    /// inside another fruit of the bunch than in f: interpenetrating fruit show only their outer
+    /// surfaces.
     [[nodiscard]] bool inside_other(std::size_t f, const Vec3& q, double relative) const {
         for (auto g : members_[s_.fruits[f].bunch]) {
-            if (g != f) {
-                const Fruit& o = s_.fruits[g];
-                const Vec3 d = sub(q, o.centre);
-                if (std::sqrt(dot(d, d)) / o.radius < relative) {
-                    return true;
-                }
+            if (g != f && s_.fruits[g].level(q) < relative) {
+                return true;
             }
         }
         return false;
@@ -161,8 +174,8 @@ private:
             holes.emplace_back(rng_.direction(), std::cos(std::asin(rng_.uniform(0.2, 0.45))));
         }
         for (auto n = std::llround(area * density); n > 0; --n) {
-            const Vec3 d = rng_.direction();
-            const double keep = 0.1 + 0.9 * std::max(0.0, dot(d, outward));
+            const Vec3 d = on_surface(x);
+            const double keep = 0.1 + 0.9 * std::max(0.0, dot(x.normal(d), outward));
             bool in_hole = false;
             for (const auto& [centre, cosine] : holes) {
                 in_hole = in_hole || dot(d, centre) > cosine;
@@ -174,28 +187,37 @@ private:
     }
 
     /// Scan lines: vertical planes `voxel` apart across the scanner's view, points a third of that
-    /// apart along each line, only on the side facing the scanner.
+    /// apart along each line, only on the side facing the scanner. A plane at t from the centre
+    /// meets the unit sphere that the fruit stretches (x = centre + A y, |y| = 1) in the circle
+    /// y · w = t / L, w = A across / L, L = |A across| (for a sphere w = across, L = r).
     template <class Emit>
     void stripes(std::size_t f, Emit& emit) {
         const Fruit& x = s_.fruits[f];
         const double v = p_.voxel, r = x.radius, at = dot(x.centre, across_);
-        const Vec3 up{0, 0, 1};
-        for (auto k = static_cast<std::int64_t>(std::ceil((at - r) / v));
-             static_cast<double>(k) * v <= at + r; ++k) {
+        const double L = x.reach(across_);
+        Vec3 w = across_, e1 = toward_scanner_, e2{0, 0, 1};
+        if (!x.round()) {  // A across = L w: A is symmetric, so |A across| is the support width
+            const Vec3 stretched = sub(x.at(across_, r), x.centre);
+            w = unit(stretched);
+            e1 = unit(sub(toward_scanner_, scaled(w, dot(toward_scanner_, w))));
+            e2 = cross(w, e1);
+        }
+        // points along a line: its circle's circumference at most this many times the circle's
+        const double widest = x.largest() / L;
+        for (auto k = static_cast<std::int64_t>(std::ceil((at - L) / v));
+             static_cast<double>(k) * v <= at + L; ++k) {
             const double t = static_cast<double>(k) * v - at;
-            const double rho = std::sqrt(std::max(0.0, r * r - t * t));
-            const auto n = static_cast<std::int64_t>(std::ceil(2 * kPi * rho / (v / 3)));
+            const double rho = std::sqrt(std::max(0.0, L * L - t * t));
+            const auto n = static_cast<std::int64_t>(std::ceil(2 * kPi * rho * widest / (v / 3)));
             const double phase = rng_.uniform(0, 2 * kPi);
             for (std::int64_t j = 0; j < n; ++j) {
                 const double phi =
                     phase + 2 * kPi * static_cast<double>(j) / static_cast<double>(n);
                 Vec3 d;
                 for (int a = 0; a < 3; ++a) {
-                    d[a] = (t * across_[a] +
-                            rho * (std::cos(phi) * toward_scanner_[a] + std::sin(phi) * up[a])) /
-                           r;
+                    d[a] = (t * w[a] + rho * (std::cos(phi) * e1[a] + std::sin(phi) * e2[a])) / L;
                 }
-                if (dot(d, toward_scanner_) > 0) {
+                if (dot(x.normal(d), toward_scanner_) > 0) {
                     emit(d, r, 1);
                 }
             }
@@ -215,7 +237,7 @@ private:
 
 Rendered render_sampled(const Scene& s, const RenderParams& p) {
     for (const auto& f : s.fruits) {
-        if (f.radius < p.voxel) {
+        if (f.smallest() < p.voxel) {
             throw InvalidArgument(
                 "render: the point spacing must not be larger than the smallest fruit radius");
         }

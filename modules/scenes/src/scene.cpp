@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <unordered_map>
 
@@ -56,7 +57,79 @@ private:
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
 };
 
+double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
 }  // namespace
+
+// A spheroid's half axes: equatorial e = radius / cbrt(aspect) (twice), polar e × aspect, so that
+// its volume is the sphere's of `radius`. Every function keeps a sphere's arithmetic as it was.
+namespace {
+
+double equatorial(const Fruit& f) { return f.radius / std::cbrt(f.aspect); }
+
+}  // namespace
+
+Vec3 Fruit::at(const Vec3& d, double depth) const {
+    if (round()) {
+        return {centre[0] + depth * d[0], centre[1] + depth * d[1], centre[2] + depth * d[2]};
+    }
+    const double e = equatorial(*this), s = depth / radius, along = dot(d, axis);
+    Vec3 q;
+    for (int k = 0; k < 3; ++k) {
+        q[k] = centre[k] + s * (e * (d[k] - along * axis[k]) + e * aspect * along * axis[k]);
+    }
+    return q;
+}
+
+Vec3 Fruit::normal(const Vec3& d) const {
+    if (round()) {
+        return d;
+    }
+    const double e = equatorial(*this), along = dot(d, axis);
+    Vec3 n;
+    for (int k = 0; k < 3; ++k) {
+        n[k] = (d[k] - along * axis[k]) / e + along * axis[k] / (e * aspect);
+    }
+    const double length = std::sqrt(dot(n, n));
+    return {n[0] / length, n[1] / length, n[2] / length};
+}
+
+double Fruit::level(const Vec3& q) const {
+    const Vec3 v{q[0] - centre[0], q[1] - centre[1], q[2] - centre[2]};
+    if (round()) {
+        return std::sqrt(dot(v, v)) / radius;
+    }
+    const double e = equatorial(*this), along = dot(v, axis);
+    const double across = std::max(0.0, dot(v, v) - along * along);
+    return std::sqrt(across / (e * e) + along * along / (e * e * aspect * aspect));
+}
+
+double Fruit::reach(const Vec3& u) const {
+    if (round()) {
+        return radius;
+    }
+    const double e = equatorial(*this), along = dot(u, axis);
+    const double across = std::max(0.0, dot(u, u) - along * along);
+    return e * std::sqrt(across + aspect * aspect * along * along);
+}
+
+double Fruit::largest() const {
+    return round() ? radius : equatorial(*this) * std::max(1.0, aspect);
+}
+
+double Fruit::smallest() const {
+    return round() ? radius : equatorial(*this) * std::min(1.0, aspect);
+}
+
+double Fruit::area() const {
+    constexpr double kPi = 3.141592653589793;
+    if (round()) {
+        return 4 * kPi * radius * radius;
+    }
+    constexpr double p = 1.6075;
+    const double e = std::pow(equatorial(*this), p), c = e * std::pow(aspect, p);
+    return 4 * kPi * std::pow((e * e + 2 * e * c) / 3, 1 / p);
+}
 
 void SceneParams::validate() const {
     require(fruit_count >= 1 && fruit_count <= 1000000, "fruit_count must be in 1..1000000");
@@ -73,6 +146,8 @@ void SceneParams::validate() const {
     require(shell >= 0 && shell < 1, "shell must be in [0, 1)");
     require(leaf_density >= 0 && leaf_density <= 1e6, "leaf_density must be in [0, 1e6]");
     require(leaf_radius > 0 && std::isfinite(leaf_radius), "leaf_radius must be > 0");
+    require(aspect >= 0.25 && aspect <= 4, "aspect must be in [0.25, 4]");
+    require(aspect_spread >= 0 && aspect_spread < 1, "aspect_spread must be in [0, 1)");
 }
 
 const std::vector<std::string>& species_names() {
@@ -120,7 +195,13 @@ Scene make_scene(const SceneParams& p) {
     Scene s;
     s.canopy = p.canopy;
     s.fruit_rgb = p.fruit_rgb;
-    const double r_max = p.fruit_radius * (1 + p.radius_spread);
+    const bool round = p.aspect == 1 && p.aspect_spread == 0;
+    // the largest half axis a fruit can have: the polar one of the longest prolate, the equatorial
+    // one of the flattest oblate
+    const double stretch = round ? 1.0
+                                 : std::max(std::pow(p.aspect * (1 + p.aspect_spread), 2.0 / 3),
+                                            1 / std::cbrt(p.aspect * (1 - p.aspect_spread)));
+    const double r_max = p.fruit_radius * (1 + p.radius_spread) * stretch;
     FruitGrid grid(2 * r_max + std::max(p.separation, p.touch_gap));
     const auto inside_canopy = [&](const Vec3& c, double scale) {
         double q = 0;
@@ -129,22 +210,43 @@ Scene make_scene(const SceneParams& p) {
         }
         return q <= scale * scale;
     };
-    const auto fits = [&](const Vec3& c, double r, std::uint32_t bunch) {
+    // Fruit that do not meet: their centres at least the sum of their half widths along the line
+    // between them apart (a plane across that line then parts them; exact for spheres, a little
+    // apart at most for spheroids), less the overlap in a bunch, plus the separation between
+    // bunches.
+    const auto fits = [&](const Fruit& x) {
         bool ok = true;
-        grid.for_near(c, [&](std::uint32_t i) {
+        grid.for_near(x.centre, [&](std::uint32_t i) {
             const Fruit& f = s.fruits[i];
+            Vec3 u{};
+            if (!x.round() || !f.round()) {
+                const double length = std::sqrt(dist2(x.centre, f.centre));
+                for (int a = 0; a < 3; ++a) {
+                    u[a] = (x.centre[a] - f.centre[a]) / length;  // NaN when they coincide: no fit
+                }
+            }
             const double need =
-                r + f.radius +
-                (f.bunch == bunch ? -p.overlap * std::min(r, f.radius) : p.separation);
-            ok = ok && dist2(c, f.centre) >= need * need;
+                x.reach(u) + f.reach(u) +
+                (f.bunch == x.bunch ? -p.overlap * std::min(x.radius, f.radius) : p.separation);
+            ok = ok && dist2(x.centre, f.centre) >= need * need;
         });
         return ok;
     };
-    const auto place = [&](const Vec3& c, double r, std::uint32_t bunch) {
-        s.fruits.push_back({c, r, bunch});
+    const auto place = [&](const Fruit& x) {
+        s.fruits.push_back(x);
         grid.add(s.fruits.back(), static_cast<std::uint32_t>(s.fruits.size() - 1));
     };
-    const auto radius = [&] { return p.fruit_radius * (1 + p.radius_spread * rng.uniform(-1, 1)); };
+    // A new fruit's size and shape (spheres draw no shape, so their scenes stay as they were).
+    const auto shaped = [&](std::uint32_t bunch) {
+        Fruit x;
+        x.radius = p.fruit_radius * (1 + p.radius_spread * rng.uniform(-1, 1));
+        x.bunch = bunch;
+        if (!round) {
+            x.aspect = p.aspect * (1 + p.aspect_spread * rng.uniform(-1, 1));
+            x.axis = rng.direction();
+        }
+        return x;
+    };
     const double shell3 = p.shell * p.shell * p.shell;
     while (s.fruits.size() < p.fruit_count) {
         const auto left = p.fruit_count - s.fruits.size();
@@ -161,10 +263,10 @@ Scene make_scene(const SceneParams& p) {
             }
             const Vec3 d = rng.direction();
             const double u = std::cbrt(rng.uniform(shell3, 1.0));  // uniform in the shell's volume
-            const Vec3 c{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]};
-            const double r = radius();
-            if (fits(c, r, bunch)) {
-                place(c, r, bunch);
+            Fruit x = shaped(bunch);
+            x.centre = {u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]};
+            if (fits(x)) {
+                place(x);
                 break;
             }
         }
@@ -172,13 +274,14 @@ Scene make_scene(const SceneParams& p) {
             for (int attempt = 0; attempt < 200; ++attempt) {
                 const Fruit m = s.fruits[first + rng.below(s.fruits.size() - first)];
                 const Vec3 d = rng.direction();
-                const double r = radius();
+                Fruit x = shaped(bunch);
                 const double at =
-                    m.radius + r + rng.uniform(-p.overlap * std::min(m.radius, r), p.touch_gap);
-                const Vec3 c{m.centre[0] + at * d[0], m.centre[1] + at * d[1],
-                             m.centre[2] + at * d[2]};
-                if (inside_canopy(c, 1.1) && fits(c, r, bunch)) {
-                    place(c, r, bunch);
+                    m.reach(d) + x.reach(d) +
+                    rng.uniform(-p.overlap * std::min(m.radius, x.radius), p.touch_gap);
+                x.centre = {m.centre[0] + at * d[0], m.centre[1] + at * d[1],
+                            m.centre[2] + at * d[2]};
+                if (inside_canopy(x.centre, 1.1) && fits(x)) {
+                    place(x);
                     break;
                 }
             }  // a bunch that cannot grow stays smaller; the next bunch takes the remaining fruit

@@ -67,6 +67,70 @@ TEST(Sampled, StripesAreHalfCirclesOnParallelPlanes) {
     }
 }
 
+/// One prolate fruit (aspect 1.6, polar axis (0, 0.6, 0.8)) of volume radius 0.03.
+Scene one_spheroid(double aspect = 1.6) {
+    Scene s = one_fruit();
+    s.fruits[0].aspect = aspect;
+    s.fruits[0].axis = {0, 0.6, 0.8};
+    return s;
+}
+
+/// Position of q along the fruit's axis, as a fraction of the polar half axis.
+double along(const std::array<float, 3>& q, const Fruit& f) {
+    double t = 0;
+    for (int a = 0; a < 3; ++a) {
+        t += (q[a] - f.centre[a]) * f.axis[a];
+    }
+    return t / (f.radius / std::cbrt(f.aspect) * f.aspect);
+}
+
+TEST(Sampled, SpheroidSurfacePointsLieOnItUniformlyOverItsArea) {
+    const Scene s = one_spheroid();
+    const Fruit& f = s.fruits[0];
+    const double e = 0.03 / std::cbrt(1.6), c = 1.6 * e;  // equatorial and polar half axes
+    const Rendered r = render(s, bare(Mode::kSurface, 0.0005));
+    // Area by quadrature of 2 pi rho(z) sqrt(1 + rho'(z)^2) dz, rho(z) = e sqrt(1 - z^2 / c^2):
+    // Thomsen's formula within 1.1 %, and the band |z| < c / 2 its share of it.
+    double area = 0, band = 0;
+    const int n = 200000;
+    for (int k = 0; k < n; ++k) {
+        const double z = -c + (k + 0.5) * 2 * c / n, rho = e * std::sqrt(1 - z * z / (c * c));
+        const double slope = -e * z / (c * c * std::sqrt(1 - z * z / (c * c)));
+        const double dA = 2 * kPi * rho * std::sqrt(1 + slope * slope) * 2 * c / n;
+        area += dA;
+        band += std::abs(z) < c / 2 ? dA : 0;
+    }
+    EXPECT_NEAR(f.area(), area, 0.011 * area);
+    EXPECT_NEAR(static_cast<double>(r.xyz.size()), area / (0.0005 * 0.0005), 0.011 * r.xyz.size());
+    std::size_t in_band = 0;
+    for (const auto& q : r.xyz) {
+        ASSERT_NEAR(f.level({q[0], q[1], q[2]}), 1.0, 1e-5);
+        in_band += std::abs(along(q, f)) < 0.5;
+    }
+    // uniform over the area: the band holds its share (the unit sphere's directions alone, not
+    // thinned by the stretch of the area, would put 0.5 of the points there)
+    EXPECT_NEAR(static_cast<double>(in_band) / r.xyz.size(), band / area, 0.01);
+    EXPECT_GT(band / area, 0.54);
+}
+
+TEST(Sampled, SpheroidVolumeAndStripesStayOnTheSpheroid) {
+    const Scene s = one_spheroid(0.8);  // oblate
+    const Fruit& f = s.fruits[0];
+    const Rendered volume = render(s, bare(Mode::kVolume));
+    EXPECT_EQ(volume.xyz.size(), static_cast<std::size_t>(std::llround(4.0 / 3 * kPi * 1000)));
+    std::size_t inner = 0;  // uniform in volume: (1/2)^3 of the points within half the level
+    for (const auto& q : volume.xyz) {
+        ASSERT_LE(f.level({q[0], q[1], q[2]}), 1 + 1e-5);
+        inner += f.level({q[0], q[1], q[2]}) < 0.5;
+    }
+    EXPECT_NEAR(static_cast<double>(inner) / volume.xyz.size(), 0.125, 0.03);
+    const Rendered stripes = render(s, bare(Mode::kStripes));
+    ASSERT_GT(stripes.xyz.size(), 500u);
+    for (const auto& q : stripes.xyz) {
+        ASSERT_NEAR(f.level({q[0], q[1], q[2]}), 1.0, 1e-5);
+    }
+}
+
 TEST(Sampled, SfmIsDenserOutsideHasDuplicatesAndHoles) {
     Scene s = one_fruit();
     s.fruits[0].centre = {0.5, 0, 0};  // outward = +x

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <pc/core/error.h>
+#include <pc/core/random.h>
 #include <pc/scenes/render.h>
 
 namespace pc::scenes {
@@ -66,6 +67,47 @@ TEST(Scene, SpeciesHaveThePapersCountsAndFruitNeverOverlap) {
                 if (members.size() > 1) {
                     EXPECT_LE(nearest, p.touch_gap + 1e-12) << name;
                 }
+            }
+        }
+    }
+}
+
+TEST(Scene, SpheroidsHaveTheirShapeAndNeverOverlap) {
+    Fruit f{{0.1, -0.2, 0.3}, 0.02, 0};
+    f.aspect = 1.5;
+    f.axis = {0.6, 0, 0.8};
+    const double e = 0.02 / std::cbrt(1.5);
+    EXPECT_NEAR(f.smallest(), e, 1e-12);
+    EXPECT_NEAR(f.largest(), 1.5 * e, 1e-12);
+    EXPECT_NEAR(f.reach(f.axis), 1.5 * e, 1e-12);
+    EXPECT_NEAR(f.reach({0, 1, 0}), e, 1e-12);
+    Rng rng(3, 0);
+    for (int k = 0; k < 1000; ++k) {  // on the surface; the normal across the surface
+        const Vec3 d = rng.direction(), q = f.at(d, f.radius), n = f.normal(d);
+        EXPECT_NEAR(f.level(q), 1.0, 1e-12);
+        Vec3 tangent{d[1] * n[2] - d[2] * n[1], d[2] * n[0] - d[0] * n[2],
+                     d[0] * n[1] - d[1] * n[0]};
+        Vec3 moved = q;  // a step along a tangent stays on the surface to second order
+        for (int a = 0; a < 3; ++a) {
+            moved[a] += 1e-5 * tangent[a];
+        }
+        EXPECT_NEAR(f.level(moved), 1.0, 1e-6);
+        EXPECT_NEAR(f.level(f.at(d, 0.5 * f.radius)), 0.5, 1e-12);
+    }
+    SceneParams p = small();
+    p.aspect = 1.6;
+    p.aspect_spread = 0.1;
+    p.touch_gap = 0.002;
+    const Scene s = make_scene(p);
+    ASSERT_EQ(s.fruits.size(), p.fruit_count);
+    for (const auto& a : s.fruits) {
+        EXPECT_NEAR(a.aspect, 1.6, 0.16 + 1e-12);
+        for (const auto& b : s.fruits) {
+            if (&a == &b || dist(a.centre, b.centre) > a.largest() + b.largest()) {
+                continue;
+            }
+            for (int k = 0; k < 200; ++k) {  // a's surface lies outside b
+                ASSERT_GE(b.level(a.at(rng.direction(), a.radius)), 1 - 1e-9);
             }
         }
     }

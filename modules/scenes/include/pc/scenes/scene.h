@@ -10,11 +10,33 @@ namespace pc::scenes {
 
 using Vec3 = std::array<double, 3>;
 
-/// One fruit: a sphere. `bunch` numbers the group of touching fruit it hangs in (0-based).
+/// One fruit: a spheroid about the unit `axis`, its polar half axis `aspect` × its equatorial
+/// one (below 1 oblate as apples and tomatoes, above 1 prolate as lemons and pears), a sphere when
+/// `aspect` is 1. `radius` is the radius of the sphere of the same volume. `bunch` numbers the
+/// group of touching fruit it hangs in (0-based). A point of the fruit is written at(d, depth):
+/// the unit sphere's direction d stretched to the spheroid, depth = radius on the surface.
 struct Fruit {
     Vec3 centre{};
     double radius = 0;
     std::uint32_t bunch = 0;
+    double aspect = 1;
+    Vec3 axis{0, 0, 1};
+
+    [[nodiscard]] bool round() const { return aspect == 1; }
+    /// centre + (depth / radius) × (the spheroid's point for the unit direction d)
+    [[nodiscard]] Vec3 at(const Vec3& d, double depth) const;
+    /// The outward unit normal at at(d, radius).
+    [[nodiscard]] Vec3 normal(const Vec3& d) const;
+    /// q's depth relative to the surface: 1 on it, below 1 inside (|q - centre| / radius for a
+    /// sphere).
+    [[nodiscard]] double level(const Vec3& q) const;
+    /// The half width along the unit direction u (the support function; radius for a sphere).
+    [[nodiscard]] double reach(const Vec3& u) const;
+    /// The largest and the smallest half axis.
+    [[nodiscard]] double largest() const;
+    [[nodiscard]] double smallest() const;
+    /// The surface area (Knud Thomsen's formula, within 1.1 %; exact for a sphere).
+    [[nodiscard]] double area() const;
 };
 
 /// A leaf: a flat disc. Leaves occlude fruit from the cameras and leak into exports as clutter.
@@ -48,6 +70,9 @@ struct SceneParams {
     double leaf_density = 300;   ///< leaves per m³ of canopy
     double leaf_radius = 0.035;  ///< mean leaf radius, m
     std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
+    double aspect = 1;  ///< mean polar / equatorial half axis of the fruit (1 = spheres)
+    double aspect_spread =
+        0;  ///< aspects uniform in aspect·(1 ± spread), axes in random directions
     std::uint64_t seed = 1;
 
     void validate() const;  ///< throws pc::InvalidArgument naming the field
