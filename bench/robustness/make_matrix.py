@@ -118,8 +118,43 @@ for part, seed, family, spec, colour, rgb in LATER_PARTS:
                   lambda family, colour, mode, part=part: part)
     first += 100
 
+# Fruit shapes (session 26): every scene above has spherical fruit. Real fruit are spheroids of
+# their own aspect (polar / equatorial half axis; ratios of length to diameter from pomology):
+# tomatoes and blueberries 0.8, apples 0.85-0.9, citrus 0.93, cherries 0.95, peaches 1.0,
+# lychees 1.05, plums and apricots 1.1, figs 1.2, grapes 1.25 (oval kinds to 2), kiwis and
+# olives 1.35, lemons 1.35, pears and mangos 1.5-1.6, dates 1.7-1.8; each fruit's aspect within
+# ±10 % of its kind's, its axis in any direction. 'shapes' (1141-1240) is a tune part: the
+# families seen so far at their aspects plus two elongated ones (pear-like 32 mm, lemon-like
+# 30 mm); 'held-out-11' (1241-1340) adds date-like fruit (11 mm, aspect 1.75, bunches of 3-8
+# touching) and amber fruit, scored once when the method for shapes is final.
+ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1.25, 'truss': 0.8,
+           'citrus': 0.93, 'crab': 0.9, 'olive': 1.35, 'kiwi': 1.35, 'apricot': 1.1, 'fig': 1.2,
+           'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75}
+SHAPE_PARTS = [
+    # part, seed, new families, new colours, families left out (not yet scored)
+    ('shapes', 2036,
+     {'pear': (0.032, '--species apple --fruit-radius 0.032 --bunch-min 1 --bunch-max 2 '
+                      '--touch-gap 0.003 --fruit-count 70 --canopy 0.7,0.7,0.55'),
+      'lemon': (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 --bunch-max 3 '
+                       '--touch-gap 0.002 --fruit-count 70 --canopy 0.7,0.7,0.55')},
+     {}, {'blueberry'}),
+    ('held-out-11', 2037,
+     {'date': (0.011, '--species plum --fruit-radius 0.011 --bunch-min 3 --bunch-max 8 '
+                      '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
+     {'amber': (200, 130, 30)}, set()),
+]
+for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
+    families.update(new_families)
+    colours.update(new_colours)
+    shaped = {f: (r, flags + (f' --aspect {ASPECTS[f]:g} --aspect-spread 0.1' if ASPECTS[f] != 1 else ''))
+              for f, (r, flags) in families.items() if f not in left_out}
+    palette = {c: rgb for c, rgb in colours.items() if not (left_out and c == 'grey-blue')}
+    lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
+                  lambda family, colour, mode, part=part: part)
+    first += 100
+
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
 with open(out, 'w') as f:
     f.write('\n'.join(lines) + '\n')
-counts = ', '.join(f'{sum(f"|{p}|" in l for l in lines)} in {p}' for p, *_ in LATER_PARTS)
+counts = ', '.join(f'{sum(f"|{p}|" in l for l in lines)} in {p}' for p, *_ in LATER_PARTS + SHAPE_PARTS)
 print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune, {counts}')
