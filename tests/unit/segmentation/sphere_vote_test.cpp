@@ -192,6 +192,25 @@ TEST(SphereVote, FruitOfTwoSpacingsARadiusAreFoundWithTheirRadius) {
     }
 }
 
+TEST(SphereVote, ATreeOfManyFruitIsNotThinnedBelowItsResolution) {
+    // The points that vote are a strided sample of at most max_samples; a tree of many fruit
+    // thinned that far keeps too few a fruit (here 200 of ~6300 points: under 2 spacings a
+    // radius, as a tree of 5000 apples at 5 spacings came down to 2.6). The sample is thinned
+    // less, until the rough size spans min_resolution of its spacings.
+    const Scene s = solid(6);
+    SphereVoteParams p;
+    p.max_samples = 200;
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, p);
+    EXPECT_EQ(r.cluster_count, 7u);
+    EXPECT_NEAR(r.fruit_radius, 6, 1.0);
+    EXPECT_LT(r.spacing, 2.0);  // the sample's spacing: about the lattice's, not 32^(1/3) of it
+    EXPECT_GE(misassigned(r.labels, s.truth), 0);
+    p.min_resolution = 0;  // thinned to max_samples as before
+    const SphereVoteResult thin = sphere_vote(XyzView(s.cloud), s.label, p);
+    EXPECT_GE(thin.spacing, 2.0);
+    EXPECT_NE(thin.cluster_count, 7u);
+}
+
 TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {
     // As DBSCAN leaves an SfM fruit whose far side is sparse: the upper half of each fruit in
     // one piece, the lower half in pieces of about 12 points (cells of 4 spacings), points

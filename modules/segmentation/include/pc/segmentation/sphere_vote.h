@@ -43,7 +43,11 @@ struct SphereVoteParams {
     /// DBSCAN left fragments when its median cluster has fewer points: the first rough fruit
     /// size is then taken over points, not clusters (pc_fruitcount warns below the same size)
     double fragment_points = 40;
-    std::uint32_t max_samples = 100000;  ///< points that fit normals and vote (a strided sample)
+    std::uint32_t max_samples =
+        100000;  ///< points that fit normals and vote (a strided sample) ...
+    /// ... unless the first rough fruit size then spans fewer spacings of the sample than this:
+    /// the sample is thinned less, down to every point (a tree of many fruit is not coarsened)
+    double min_resolution = 5;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
 
