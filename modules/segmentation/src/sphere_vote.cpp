@@ -612,6 +612,106 @@ void assign(const XyzView& points,
     }
 }
 
+/// Elongated fruit (pears, lemons, dates: spheroids of aspect up to about 1.8) give two peaks on
+/// their long axis, where the normals of either end meet, or one peak and a leftover end beyond
+/// reach. Two parts, each a fruit around a centre or a leftover piece of a cluster (around its
+/// centroid), are one fruit when the points of both form one convex body: across the line
+/// between their centres, the body's width where two fruit would touch (the point dividing the
+/// line in the ratio of their radii; halfway for a leftover) is at least `convex` × the width
+/// interpolated between the widths at the two centres (a convex profile lies above its chords);
+/// two touching spheres narrow there to a waist (about half). A width is the median distance
+/// from the line of the points in a slab ±0.1 R across it, within 1.3 × the larger radius (a
+/// neighbour's points given to one of the two do not widen it); a slab of fewer than 3 points
+/// says nothing. Centres are tried within `near` × R of each other, leftovers within 2.5 R of a
+/// centre. Labels are merged in place (into the fruit's); returns the fruit centres merged into
+/// another.
+std::uint32_t join_elongated(const XyzView& points,
+                             const std::vector<std::uint32_t>& members,
+                             std::vector<std::uint32_t>& labels,
+                             const std::vector<Peak>& peaks,
+                             double R,
+                             double near,
+                             double convex) {
+    const auto count = static_cast<std::uint32_t>(peaks.size());
+    std::uint32_t top = count;
+    for (auto i : members) {
+        top = std::max(top, labels[i]);
+    }
+    std::vector<std::vector<std::uint32_t>> of(top);  // part l - 1: the points labelled l
+    for (auto i : members) {
+        if (labels[i] >= 1) {
+            of[labels[i] - 1].push_back(i);
+        }
+    }
+    std::vector<V3> centre(top, V3::Zero());
+    std::vector<double> radius(top, 0.0);  // 0: a leftover
+    for (std::uint32_t l = 0; l < top; ++l) {
+        if (l < count) {
+            centre[l] = peaks[l].centre;
+            radius[l] = peaks[l].radius;
+        } else if (!of[l].empty()) {
+            for (auto i : of[l]) {
+                centre[l] += vec(points[i]);
+            }
+            centre[l] /= static_cast<double>(of[l].size());
+        }
+    }
+    const auto one_body = [&](std::uint32_t j, std::uint32_t k) {
+        const V3 axis = centre[k] - centre[j];
+        const double d = axis.norm();
+        const V3 u = axis / d;
+        const double split =
+            radius[k] > 0 ? radius[j] / (radius[j] + radius[k]) : 0.5;  // j is a fruit
+        const double at[3] = {0, d * split, d};
+        const double within = 1.3 * std::max(radius[j], radius[k]);
+        std::vector<double> across[3];
+        for (const auto* part : {&of[j], &of[k]}) {
+            for (auto i : *part) {
+                const V3 q = vec(points[i]) - centre[j];
+                const double t = q.dot(u);
+                const double rho = (q - t * u).norm();
+                for (int w = 0; w < 3; ++w) {
+                    if (std::abs(t - at[w]) <= 0.1 * R && rho <= within) {
+                        across[w].push_back(rho);
+                    }
+                }
+            }
+        }
+        if (across[0].size() < 3 || across[1].size() < 3 || across[2].size() < 3) {
+            return false;
+        }
+        const double w0 = median(across[0]), w1 = median(across[1]), w2 = median(across[2]);
+        return w1 >= convex * (w0 + (w2 - w0) * split);
+    };
+    std::vector<std::uint32_t> root(top);
+    std::iota(root.begin(), root.end(), 0u);
+    const auto find = [&](std::uint32_t a) {
+        while (root[a] != a) {
+            a = root[a] = root[root[a]];
+        }
+        return a;
+    };
+    std::uint32_t merged = 0;
+    for (std::uint32_t j = 0; j < count; ++j) {
+        for (std::uint32_t k = j + 1; k < top; ++k) {
+            const double d = (centre[k] - centre[j]).norm();
+            const double window = k < count ? near : 2.5;
+            if (of[j].empty() || of[k].empty() || !(d > 0 && d < window * R) ||
+                find(j) == find(k) || (k >= count && find(k) != k) || !one_body(j, k)) {
+                continue;
+            }
+            merged += k < count ? 1 : 0;
+            root[find(k)] = find(j);
+        }
+    }
+    for (auto i : members) {
+        if (labels[i] >= 1) {
+            labels[i] = find(labels[i] - 1) + 1;
+        }
+    }
+    return merged;
+}
+
 /// Drops parts below min_size points or min_relative × the median fruit's points (to 0) and
 /// numbers the rest 1.. by decreasing size. Labels 1..fruit are fruit around a centre, higher
 /// ones the leftovers of clusters no centre claimed. When centres claimed most points, the
@@ -697,6 +797,11 @@ void SphereVoteParams::validate() const {
     }
     if (max_samples < 100) {
         throw InvalidArgument("sphere_vote: max_samples must be >= 100");
+    }
+    if (!(join_near >= 0 && std::isfinite(join_near)) || !(join_convex > 0 && join_convex <= 2) ||
+        !(join_resolution >= 0 && std::isfinite(join_resolution))) {
+        throw InvalidArgument(
+            "sphere_vote: join_near and join_resolution must be >= 0, join_convex in (0, 2]");
     }
     if (!(min_resolution >= 0 && std::isfinite(min_resolution))) {
         throw InvalidArgument("sphere_vote: min_resolution must be >= 0");
@@ -912,7 +1017,12 @@ SphereVoteResult sphere_vote(const XyzView& points,
             r.claimed = c;
         }
     }
-    r.peaks = static_cast<std::uint32_t>(peaks.size());
+    // Elongated fruit split in two are joined where the cloud resolves a fruit's profile.
+    const std::uint32_t joined = params.join_near > 0 && R >= params.join_resolution * ss
+                                     ? join_elongated(points, members, labels, peaks, R,
+                                                      params.join_near, params.join_convex)
+                                     : 0;
+    r.peaks = static_cast<std::uint32_t>(peaks.size()) - joined;
     return done();
 }
 

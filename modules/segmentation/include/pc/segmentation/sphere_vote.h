@@ -48,6 +48,13 @@ struct SphereVoteParams {
     /// ... unless the first rough fruit size then spans fewer spacings of the sample than this:
     /// the sample is thinned less, down to every point (a tree of many fruit is not coarsened)
     double min_resolution = 5;
+    /// Elongated fruit (two centres on one long axis, or a centre and a leftover end): two parts
+    /// closer than join_near × R (leftovers 2.5 R) whose points form one convex body (the width
+    /// where two fruit would touch at least join_convex × the chord of the widths at their
+    /// centres) are one fruit; only where R spans join_resolution spacings (0 near: never)
+    double join_near = 1.6;
+    double join_convex = 0.9;
+    double join_resolution = 6;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
 
@@ -87,6 +94,9 @@ struct SphereVoteResult {
 ///     distance of its voters), when within `reach` of it; points far from every peak keep their
 ///     DBSCAN cluster as one more part, or are dropped when that part is a flat `sheet`. Pieces
 ///     of one fruit that DBSCAN separated join their peak.
+///  5. Elongated fruit: two parts close together whose points form one convex body (no waist
+///     between them, as two touching fruit have) are one fruit (join_near, join_convex), where
+///     R spans join_resolution spacings.
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
                                            std::vector<std::uint32_t> labels,
