@@ -7,7 +7,8 @@ split: 'tune' scenes may be looked at while a method is chosen; 'held-out' scene
 at the end (every scene of the grape family, of yellow fruit and of scan stripes, and one in five
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
 'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-10'
-(1041-1140) each after the one before."""
+(1041-1140) each after the one before; 'shapes' (1141-1240, a tune part) and 'held-out-11'
+(1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below)."""
 import random
 import os
 
