@@ -8,7 +8,8 @@ at the end (every scene of the grape family, of yellow fruit and of scan stripes
 of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored once, and
 'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-10'
 (1041-1140) each after the one before; 'shapes' (1141-1240, a tune part) and 'held-out-11'
-(1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below)."""
+(1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below), as has
+'held-out-12' (1341-1440), drawn after held-out-11 had been scored."""
 import random
 import os
 
@@ -130,7 +131,8 @@ for part, seed, family, spec, colour, rgb in LATER_PARTS:
 # touching) and amber fruit, scored once when the method for shapes is final.
 ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1.25, 'truss': 0.8,
            'citrus': 0.93, 'crab': 0.9, 'olive': 1.35, 'kiwi': 1.35, 'apricot': 1.1, 'fig': 1.2,
-           'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75}
+           'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75,
+           'mango': 1.5}
 SHAPE_PARTS = [
     # part, seed, new families, new colours, families left out (not yet scored)
     ('shapes', 2036,
@@ -143,6 +145,13 @@ SHAPE_PARTS = [
      {'date': (0.011, '--species plum --fruit-radius 0.011 --bunch-min 3 --bunch-max 8 '
                       '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
      {'amber': (200, 130, 30)}, set()),
+    # 12 (session 26, after held-out-10 and -11 were scored): mango-like, 45 mm, aspect 1.5,
+    # single or in touching pairs; lime fruit (hue 80 degrees: inside the foliage-green band,
+    # as limes and green apples are)
+    ('held-out-12', 2038,
+     {'mango': (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 2 '
+                       '--touch-gap 0.002 --fruit-count 50 --canopy 0.9,0.9,0.7')},
+     {'lime': (140, 190, 40)}, set()),
 ]
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
     families.update(new_families)
