@@ -3,6 +3,8 @@
 # each method, scored against their truth. One command:
 #     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
+#                              [--jobs N (scenes counted N at a time; their seconds then share
+#                              the cores)]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
 # needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), radius
 # (the default plus --fruit-radius: the median radius of the fruit present, as a user who knows
@@ -17,8 +19,10 @@ split=tune
 methods="default word dense paper-dense paper-sparse"
 write_docs=0
 from_rows=
+jobs=1
 while [ $# -gt 0 ]; do
   case $1 in
+    --jobs) jobs=$2; shift 2 ;;
     --split) split=$2; shift 2 ;;
     --methods) methods=$2; shift 2 ;;
     --write-docs) write_docs=1; shift ;;
@@ -39,12 +43,13 @@ echo "id,split,family,mode,r_over_s,noise,colour,units,method,present,count,f1,c
 words=$($b/pc_fruitcount --help | tr -s ' \n' ' ' | grep -o -- '--fruit-color arg[^:]*: [a-z, ]*' || true)
 
 newest=$(cut -d'|' -f2 bench/robustness/scenes.txt | grep '^held-out-' | sort -V | tail -n 1)
-while IFS='|' read -r id part family mode rs noise colour units args; do
-  case $split in  # "all" is every part scored so far: the newest held-out part only by name
-    all) [ "$part" = "$newest" ] && continue ;;
-    *) [ "$part" = "$split" ] || continue ;;
-  esac
+# score_scene LINE: one scenes.txt line counted by each method; its rows in $dir/scenes/ID.rows
+score_scene() {
+  local id part family mode rs noise colour units args stem present method extra start end score
+  local count f1 warnings
+  IFS='|' read -r id part family mode rs noise colour units args <<<"$1"
   stem=$dir/scenes/$id
+  rm -f "$stem.rows"
   if [ ! -f "$stem.json" ] || [ $b/pc_synth -nt "$stem.json" ]; then
     # shellcheck disable=SC2086
     $b/pc_synth $args -o "$stem.pcd" --truth "$stem.json"
@@ -73,9 +78,24 @@ print(statistics.median(f["radius"] for f in t["fruits"] if f["points"] > 0))' "
     warnings=$(grep -c 'warning' "$stem.err" || true)
     awk -v a="$start" -v b="$end" -v c="$count" -v p="$present" -v f1="$f1" -v w="$warnings" \
         -v row="$id,$part,$family,$mode,$rs,$noise,$colour,$units,$method" \
-        'BEGIN { e = p > 0 ? (c - p) / p : 0; printf "%s,%s,%s,%.4f,%.4f,%.2f,%s\n", row, p, c, f1, e, b - a, w }' >>"$rows"
+        'BEGIN { e = p > 0 ? (c - p) / p : 0; printf "%s,%s,%s,%.4f,%.4f,%.2f,%s\n", row, p, c, f1, e, b - a, w }' >>"$stem.rows"
   done
+}
+export -f score_scene
+export b dir methods words
+selected=()
+while IFS= read -r line; do
+  part=$(cut -d'|' -f2 <<<"$line")
+  case $split in  # "all" is every part scored so far: the newest held-out part only by name
+    all) [ "$part" = "$newest" ] && continue ;;
+    *) [ "$part" = "$split" ] || continue ;;
+  esac
+  selected+=("$line")
 done <bench/robustness/scenes.txt
+printf '%s\n' "${selected[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'score_scene "$1"' _ {}
+for line in "${selected[@]}"; do
+  cat "$dir/scenes/${line%%|*}.rows" >>"$rows"
+done
 fi
 
 # Summary: each method on the tune and held-out parts, then the first method per condition.
