@@ -7,8 +7,11 @@
 #include <pc/scenes/scene.h>
 
 #include "cell_key.h"
+#include "vec3.h"
 
 namespace pc::scenes {
+
+using namespace detail;
 
 namespace {
 
@@ -57,14 +60,8 @@ private:
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
 };
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
-}  // namespace
-
 // A spheroid's half axes: equatorial e = radius / cbrt(aspect) (twice), polar e × aspect, so that
 // its volume is the sphere's of `radius`. Every function keeps a sphere's arithmetic as it was.
-namespace {
-
 double equatorial(const Fruit& f) { return f.radius / std::cbrt(f.aspect); }
 
 }  // namespace
@@ -95,7 +92,7 @@ Vec3 Fruit::normal(const Vec3& d) const {
 }
 
 double Fruit::level(const Vec3& q) const {
-    const Vec3 v{q[0] - centre[0], q[1] - centre[1], q[2] - centre[2]};
+    const Vec3 v = sub(q, centre);
     if (round()) {
         return std::sqrt(dot(v, v)) / radius;
     }
@@ -122,7 +119,6 @@ double Fruit::smallest() const {
 }
 
 double Fruit::area() const {
-    constexpr double kPi = 3.141592653589793;
     if (round()) {
         return 4 * kPi * radius * radius;
     }
