@@ -849,10 +849,17 @@ SphereVoteResult sphere_vote(const XyzView& points,
         size_list.push_back(n);
     }
     const bool fragments = median(size_list) < params.fragment_points;
+    // The points that vote (every `every`-th member), their spacing and the first rough size.
+    Sample all;
+    double ss = 0, first = 0;
+    const auto sample = [&](std::size_t every) {
+        all = thinned(points, members, labels, every);
+        all.view = points.subset(all.at);  // the view points into the moved sample's `at`
+        ss = search::median_spacing(all.view);
+        first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all, fragments);
+    };
     std::size_t every = (members.size() + params.max_samples - 1) / params.max_samples;
-    Sample all = thinned(points, members, labels, every);
-    double ss = search::median_spacing(all.view);
-    double first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all, fragments);
+    sample(every);
     // The sample must still resolve a fruit: thinned to max_samples points, a tree of 5063 apples
     // of 5 spacings a radius kept 2.6 a radius, where R read 25 % large and 29 % of the fruit
     // found no centre. Thinned less (a surface's spacing grows as the square root of the stride)
@@ -864,10 +871,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
         every = std::min(
             every - 1,
             std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(every) * f * f)));
-        all = thinned(points, members, labels, every);
-        all.view = points.subset(all.at);
-        ss = search::median_spacing(all.view);
-        first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all, fragments);
+        sample(every);
     }
     r.spacing = ss;
     if (!(ss > 0) || !(first > 0)) {
