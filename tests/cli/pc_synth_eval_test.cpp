@@ -66,11 +66,35 @@ TEST(PcSynth, TruthAgreesWithTheCloud) {
     EXPECT_NE(r.out.find("gt_instance"), std::string::npos);
 }
 
+TEST(PcSynth, SpheroidFruitCarryTheirShapeInTheTruth) {
+    // --aspect through a pipe: every fruit's aspect within the spread, a unit axis, and the
+    // cloud's fruit points as the truth counts them; round fruit have no shape keys.
+    TempDir dir;
+    const RunResult r = run_shell(
+        "@pc_synth --species plum --fruit-count 30 --canopy 0.4,0.4,0.3 --mode surface "
+        "--aspect 1.6 --aspect-spread 0.1 --truth " +
+        dir.file("t.json") + " | @pc_info");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto truth = nlohmann::json::parse(slurp(dir.file("t.json")));
+    EXPECT_EQ(truth["points"], nlohmann::json::parse(r.out)["points"]);
+    for (const auto& f : truth["fruits"]) {
+        EXPECT_NEAR(f["aspect"].get<double>(), 1.6, 0.16 + 1e-9);
+        const auto a = f["axis"].get<std::vector<double>>();
+        EXPECT_NEAR(a[0] * a[0] + a[1] * a[1] + a[2] * a[2], 1.0, 1e-9);
+    }
+    ASSERT_EQ(run_shell("@pc_synth" + kSmall + " --truth " + dir.file("r.json") + " -o " +
+                        dir.file("r.pcd"))
+                  .code,
+              0);
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir.file("r.json")))["fruits"][0].contains("aspect"));
+}
+
 TEST(PcSynth, BadParametersAreUsageErrorsWithoutOutput) {
     TempDir dir;
     for (const std::string args :
          {" --fruit-radius -1", " --mode solid", " --species banana", " --fruit-rgb 300,0,0",
-          " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1"}) {
+          " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1", " --aspect 5",
+          " --aspect-spread 1"}) {
         const RunResult r = run_shell("@pc_synth" + args + " -o " + dir.file("x.pcd"));
         EXPECT_EQ(r.code, 2) << args << ": " << r.err;
         EXPECT_EQ(line_count(r.err), 1) << r.err;
