@@ -227,13 +227,15 @@ TEST(PcFruitcount, WrongFruitRadiiAreWarnings) {
     EXPECT_LT(diameter["count"].get<int>(), 30);
     EXPECT_NEAR(diameter["steps"].back()["measured_radius"].get<double>(), 0.017, 0.004);
     EXPECT_NE(diameter_err.find("is it a diameter"), std::string::npos) << diameter_err;
-    // Far too large (nearly 5 times): few centres fit, most points keep their DBSCAN cluster,
-    // and the centres take under a fifth of the points. (At 3.5 times, 0.06, they took 0.43:
-    // the diameter warning above is the one that fires there.)
+    // Far too large (nearly 5 times): few or no centres fit (the voting points, one per cube of
+    // 0.3 x the given radius, are a few a fruit), most points keep their DBSCAN cluster, and
+    // the warning asks about the radius ("fruit centres took only ..." or "found no fruit
+    // centre"). (At 3.5 times, 0.06, the diameter warning above is the one that fires.)
     const auto [large, large_err] = count("--fruit-radius 0.08");
     EXPECT_LT(large["count"].get<int>(), 30);
     EXPECT_LT(large["steps"].back()["claimed"].get<double>(), 0.4) << large["steps"];
-    EXPECT_NE(large_err.find("fruit centres took only"), std::string::npos) << large_err;
+    EXPECT_NE(large_err.find("is the fruit radius right (--fruit-radius)?"), std::string::npos)
+        << large_err;
     // DBSCAN's clusters make most of that count: eps matters, and is checked unasked.
     ASSERT_TRUE(large.contains("eps_check"));
     EXPECT_EQ(large["eps_check"]["counts"].size(), 3u);

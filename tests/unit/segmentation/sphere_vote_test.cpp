@@ -211,6 +211,35 @@ TEST(SphereVote, ATreeOfManyFruitIsNotThinnedBelowItsResolution) {
     EXPECT_NE(thin.cluster_count, 7u);
 }
 
+TEST(SphereVote, FruitSampledFarMoreThinlyThanTheirNeighboursStillVote) {
+    // Structure from motion samples some fruit far more thinly than others (and their far side
+    // ten times more thinly again). Twelve shells of radius 10 at one point a unit area, four
+    // more keeping a fifth of their points on the near side and a fiftieth on the far side, each
+    // fruit its own cluster. The voting points are spread evenly over the surfaces, not in
+    // proportion to the points: thinned in proportion, the thin fruit kept too few for normals.
+    Scene s;
+    Rng rng(11);
+    std::uint32_t id = 1;
+    for (int i = 0; i < 4; ++i) {
+        for (int j = 0; j < 4; ++j, ++id) {
+            const Eigen::Vector3d c(30.0 * i, 30.0 * j, 0);
+            Scene one;
+            add_shells(one, {{c, 10}}, id, id);
+            const bool thin = i == j;
+            for (const auto& p : one.cloud) {
+                const double keep = !thin ? 1 : p.z > 0 ? 0.2 : 0.02;
+                if (rng.uniform() < keep) {
+                    s.add(Eigen::Vector3d(p.x, p.y, p.z), id, id);
+                }
+            }
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.peaks, 16u);
+    EXPECT_EQ(r.cluster_count, 16u);
+    EXPECT_GE(misassigned(r.labels, s.truth), 0);
+}
+
 /// A prolate spheroid's surface (polar half axis `aspect` × the equatorial, volume radius r,
 /// polar axis `axis`), points about one apart: the golden spiral stretched onto it.
 void add_spheroid(Scene& s,
@@ -500,6 +529,8 @@ TEST(SphereVote, NoiseStaysNoiseAndBadInputIsRefused) {
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.fruit_radius = -1}),
                  InvalidArgument);
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.cell = 0}), InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.vote_cell = 0}),
+                 InvalidArgument);
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.prior_low = 0}),
                  InvalidArgument);
 }
