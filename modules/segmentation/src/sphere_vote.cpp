@@ -100,39 +100,6 @@ Sample thinned(const XyzView& points,
     return s;
 }
 
-/// The points that fit normals are thinned only where a cube of vote_cell × h spans at least
-/// this many spacings (the strided sample it replaced thinned from about 8.5 × 0.3 spacings).
-constexpr double kThinFrom = 2.5;
-
-/// The first of the points `at` in each occupied cube of side `cell` (an axis needing more than
-/// 2^21 cells gets larger cubes), with their labels: a sample as dense everywhere on a surface,
-/// however unevenly it was sampled (a strided sample keeps the density differences: an SfM
-/// fruit sampled a fifth as densely as its neighbours kept too few points for normals).
-Sample one_per_cell(const XyzView& points,
-                    const std::vector<std::uint32_t>& at,
-                    const std::vector<std::uint32_t>& labels,
-                    double cell) {
-    V3 lo = V3::Constant(std::numeric_limits<double>::infinity());
-    V3 hi = -lo;
-    for (const std::uint32_t i : at) {
-        lo = lo.cwiseMin(vec(points[i]));
-        hi = hi.cwiseMax(vec(points[i]));
-    }
-    cell = std::max(cell, (hi - lo).maxCoeff() / double((1 << 21) - 2));
-    Sample s;
-    std::unordered_set<std::uint64_t> seen;
-    for (const std::uint32_t i : at) {
-        const V3 c = ((vec(points[i]) - lo) / cell).array().floor();
-        const auto k = [&](int a) { return static_cast<std::uint64_t>(c(a)); };
-        if (seen.insert(k(0) | (k(1) << 21) | (k(2) << 42)).second) {
-            s.at.push_back(i);
-            s.label.push_back(labels[i]);
-        }
-    }
-    s.view = points.subset(s.at);
-    return s;
-}
-
 /// The outer layer of solid fruit (neighbourhoods within 3 spacings lying to one side: half a
 /// ball has offset 3/8): a surface the rest of the method treats like any other.
 Sample shell_of(const XyzView& points,
@@ -288,6 +255,38 @@ std::uint64_t key_of(std::int64_t x, std::int64_t y, std::int64_t z) {
         return static_cast<std::uint64_t>(v + (std::int64_t{1} << 20)) & 0x1fffff;
     };
     return u(x) | (u(y) << 21) | (u(z) << 42);
+}
+
+/// The points that fit normals are thinned only where a cube of vote_cell × h spans at least
+/// this many spacings (the strided sample it replaced thinned from about 8.5 × 0.3 spacings).
+constexpr double kThinFrom = 2.5;
+
+/// The first of the points `at` in each occupied cube of side `cell` (an axis needing more than
+/// 2^20 cells gets larger cubes), with their labels: a sample as dense everywhere on a surface,
+/// however unevenly it was sampled (a strided sample keeps the density differences: an SfM
+/// fruit sampled a fifth as densely as its neighbours kept too few points for normals).
+Sample one_per_cell(const XyzView& points,
+                    const std::vector<std::uint32_t>& at,
+                    const std::vector<std::uint32_t>& labels,
+                    double cell) {
+    V3 lo = V3::Constant(std::numeric_limits<double>::infinity());
+    V3 hi = -lo;
+    for (const std::uint32_t i : at) {
+        lo = lo.cwiseMin(vec(points[i]));
+        hi = hi.cwiseMax(vec(points[i]));
+    }
+    cell = std::max(cell, (hi - lo).maxCoeff() / double((1 << 20) - 2));  // key_of()'s range
+    Sample s;
+    std::unordered_set<std::uint64_t> seen;
+    for (const std::uint32_t i : at) {
+        const V3 c = (vec(points[i]) - lo) / cell;
+        if (seen.insert(key_of(cell_index(c.x()), cell_index(c.y()), cell_index(c.z()))).second) {
+            s.at.push_back(i);
+            s.label.push_back(labels[i]);
+        }
+    }
+    s.view = points.subset(s.at);
+    return s;
 }
 
 struct Peak {
