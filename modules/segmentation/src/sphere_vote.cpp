@@ -918,19 +918,38 @@ SphereVoteResult sphere_vote(const XyzView& points,
         ss = search::median_spacing(all.view);
         first = params.fruit_radius > 0 ? params.fruit_radius : rough_size(all, fragments);
     };
+    // Solid fruit: an isotropic inside, seen at half the fruit's size, in 5000 places.
+    const auto looks_solid = [&] {
+        return is_solid(fit_normals(all, std::max(0.5 * first, 3 * ss),
+                                    std::max<std::size_t>(1, all.at.size() / 5000)));
+    };
+    // The size the sample must resolve: the rough size of its clusters that are not sheets
+    // (leaves and the ground need no resolution: with them, the median cluster of a canopy
+    // without colours is a leaf of 4.4 lattice steps, and every point of it fitted normals).
+    const auto resolved_size = [&] {
+        if (params.fruit_radius > 0) {
+            return first;
+        }
+        const Sample rest = without_sheets(points, all.at, labels, all, params.sheet);
+        return rest.at.empty() ? first : rough_size(rest, fragments);
+    };
     std::size_t every = (members.size() + params.max_samples - 1) / params.max_samples;
     sample(every);
     // The sample must still resolve a fruit: thinned to max_samples points, a tree of 5063 apples
-    // of 5 spacings a radius kept 2.6 a radius, where R read 25 % large and 29 % of the fruit
-    // found no centre. Thinned less (a surface's spacing grows as the square root of the stride)
-    // until the rough size spans min_resolution spacings of the sample, or every point is used
-    // (5: that tree 5233, +3.4 %; 6 counted it exactly but fits normals to every point of it, 3.2x
-    // the cloud's memory; 4: +3.6 % and the eps check).
-    while (every > 1 && ss > 0 && first > 0 && first < params.min_resolution * ss) {
-        const double f = first / (params.min_resolution * ss);
-        every = std::min(
-            every - 1,
-            std::max<std::size_t>(1, static_cast<std::size_t>(static_cast<double>(every) * f * f)));
+    // of 5.3 spacings a radius kept 2.6 a radius, where R read 25 % large and 29 % of the fruit
+    // found no centre (4791 counted). Where that size spans under min_resolution spacings of the
+    // sample, it is thinned less, in one step, by the square of the shortfall on surfaces and its
+    // cube in solids (a stride thins a surface's spacing as its square root, a volume's as its
+    // cube root): that tree every 10th point, 5064 counted. Not measured again and again: the
+    // nearest-point spacing of a thinned lattice stays at one or two steps whatever the stride
+    // (every 7th to 15th point of that tree: 1.41 steps), so a loop on it crept down point by
+    // point to every 6th of a canopy without colours (74 s at 4M, against 17 s now).
+    if (const double size = resolved_size();
+        every > 1 && ss > 0 && size > 0 && size < params.min_resolution * ss) {
+        const double f = size / (params.min_resolution * ss);
+        const bool volume = looks_solid();
+        every = std::max<std::size_t>(
+            1, static_cast<std::size_t>(static_cast<double>(every) * (volume ? f * f * f : f * f)));
         sample(every);
     }
     r.spacing = ss;
@@ -948,10 +967,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
         used.view = points.subset(used.at);
         return fit_normals(used, h);
     };
-    // Solid fruit (an isotropic inside, seen at half the fruit's size, in 5000 places) are reduced
-    // to their outer layer: from here on every cloud is a surface.
-    r.solid = is_solid(fit_normals(all, std::max(0.5 * first, 3 * ss),
-                                   std::max<std::size_t>(1, all.at.size() / 5000)));
+    // Solid fruit are reduced to their outer layer: from here on every cloud is a surface.
+    r.solid = looks_solid();
     Sample s;
     const Sample surface = r.solid ? shell_of(points, all, labels, ss) : all;
     if (surface.at.size() < 10) {

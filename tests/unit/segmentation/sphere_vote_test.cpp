@@ -211,6 +211,35 @@ TEST(SphereVote, ATreeOfManyFruitIsNotThinnedBelowItsResolution) {
     EXPECT_NE(thin.cluster_count, 7u);
 }
 
+TEST(SphereVote, LeavesDoNotMakeTheSampleFinerThanTheFruitNeed) {
+    // The sample is thinned less until the fruit's rough size spans min_resolution of its
+    // spacings. Leaves need no such resolution: ten flat discs (radius 5.5, 95 points each, their
+    // own clusters) beside the seven shells of radius 10 make a leaf the median cluster (rough
+    // size 3.9 for the fruit's 10); judged by it, every point of the cloud voted. The sample
+    // is as thin with the leaves as without them.
+    SphereVoteParams p;
+    p.max_samples = 1000;
+    Scene s = hollow(10);
+    const SphereVoteResult fruit_only = sphere_vote(XyzView(s.cloud), s.label, p);
+    for (std::uint32_t leaf = 0; leaf < 10; ++leaf) {
+        const Eigen::Vector3d at(15.0 * leaf, -50, 0);
+        const Eigen::Vector3d u = Eigen::Vector3d(1, 0, 0.3 * leaf).normalized();
+        const Eigen::Vector3d v = Eigen::Vector3d(0, 1, 0);
+        for (int i = -6; i <= 6; ++i) {
+            for (int j = -6; j <= 6; ++j) {
+                if (i * i + j * j <= 30) {
+                    s.add(at + i * u + j * v, 0, 10 + leaf);
+                }
+            }
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, p);
+    EXPECT_GT(fruit_only.spacing, 1.5);  // thinned: the shells' spacing is about 1
+    EXPECT_NEAR(r.spacing, fruit_only.spacing, 0.1 * fruit_only.spacing);
+    EXPECT_EQ(r.peaks, 7u);
+    EXPECT_NEAR(r.fruit_radius, 10, 1.5);
+}
+
 TEST(SphereVote, FruitSampledFarMoreThinlyThanTheirNeighboursStillVote) {
     // Structure from motion samples some fruit far more thinly than others (and their far side
     // ten times more thinly again). Twelve shells of radius 10 at one point a unit area, four

@@ -50,8 +50,10 @@ struct SphereVoteParams {
     double vote_cell = 0.3;
     std::uint32_t max_samples =
         100000;  ///< points that fit normals and vote (a strided sample) ...
-    /// ... unless the first rough fruit size then spans fewer spacings of the sample than this:
-    /// the sample is thinned less, down to every point (a tree of many fruit is not coarsened)
+    /// ... unless the rough size of the clusters that are not sheets (leaves, the ground) then
+    /// spans fewer spacings of the sample than this: the sample is thinned less, once, by that
+    /// shortfall squared (surfaces) or cubed (solids) (a tree of many fruit is not coarsened;
+    /// leaves do not make it finer)
     double min_resolution = 5;
     /// Elongated fruit (two centres on one long axis, or a centre and a leftover end): two parts
     /// closer than join_near × R (leftovers 2.5 R) whose points form one convex body (the width
