@@ -948,9 +948,11 @@ SphereVoteResult sphere_vote(const XyzView& points,
         every > 1 && ss > 0 && size > 0 && size < params.min_resolution * ss) {
         const double f = size / (params.min_resolution * ss);
         const bool volume = looks_solid();
-        every = std::max<std::size_t>(
-            1, static_cast<std::size_t>(static_cast<double>(every) * (volume ? f * f * f : f * f)));
-        sample(every);
+        const double finer = static_cast<double>(every) * (volume ? f * f * f : f * f);
+        if (const auto e = std::max<std::size_t>(1, std::lround(finer)); e != every) {
+            every = e;
+            sample(every);
+        }
     }
     r.spacing = ss;
     if (!(ss > 0) || !(first > 0)) {
