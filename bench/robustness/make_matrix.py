@@ -9,8 +9,8 @@ of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored 
 'held-out-3' (341-440) after 'held-out-2' had been, 'held-out-4' (441-540) to 'held-out-10'
 (1041-1140) each after the one before; 'shapes' (1141-1240, a tune part) and 'held-out-11'
 (1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below), as have
-'held-out-12' (1341-1440), drawn after held-out-11 had been scored, and 'held-out-13'
-(1441-1540), drawn after held-out-12 had been."""
+'held-out-12' (1341-1440), drawn after held-out-11 had been scored, 'held-out-13'
+(1441-1540), drawn after held-out-12 had been, and 'held-out-14' (1541-1640), after held-out-13."""
 import random
 import os
 
@@ -133,7 +133,7 @@ for part, seed, family, spec, colour, rgb in LATER_PARTS:
 ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1.25, 'truss': 0.8,
            'citrus': 0.93, 'crab': 0.9, 'olive': 1.35, 'kiwi': 1.35, 'apricot': 1.1, 'fig': 1.2,
            'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75,
-           'mango': 1.5, 'avocado': 1.4}
+           'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8}
 SHAPE_PARTS = [
     # part, seed, new families, new colours, families left out (not yet scored)
     ('shapes', 2036,
@@ -160,6 +160,13 @@ SHAPE_PARTS = [
      {'avocado': (0.039, '--species apple --fruit-radius 0.039 --bunch-min 1 --bunch-max 2 '
                          '--touch-gap 0.002 --fruit-count 50 --canopy 0.9,0.9,0.7')},
      {'black-green': (50, 65, 35)}, set()),
+    # 14 (session 28, after held-out-13 had been scored): persimmon-like, 35 mm, oblate (aspect
+    # 0.8), single or up to three touching; salmon fruit (hue 15 degrees, saturation 0.5: paler
+    # than any red or orange so far, as blushed peaches and persimmons are)
+    ('held-out-14', 2040,
+     {'persimmon': (0.035, '--species apple --fruit-radius 0.035 --bunch-min 1 --bunch-max 3 '
+                           '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
+     {'salmon': (235, 150, 120)}, set()),
 ]
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
     families.update(new_families)
