@@ -944,8 +944,9 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // nearest-point spacing of a thinned lattice stays at one or two steps whatever the stride
     // (every 7th to 15th point of that tree: 1.41 steps), so a loop on it crept down point by
     // point to every 6th of a canopy without colours (74 s at 4M, against 17 s now).
-    if (const double size = resolved_size();
-        every > 1 && ss > 0 && size > 0 && size < params.min_resolution * ss) {
+    // (The size is looked at only when the sample is thinned: every point is as fine as it gets.)
+    if (const double size = every > 1 && ss > 0 ? resolved_size() : 0;
+        size > 0 && size < params.min_resolution * ss) {
         const double f = size / (params.min_resolution * ss);
         const bool volume = looks_solid();
         const double finer = static_cast<double>(every) * (volume ? f * f * f : f * f);
