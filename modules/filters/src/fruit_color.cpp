@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include <pc/core/error.h>
 #include <pc/core/names.h>
@@ -16,6 +18,43 @@ constexpr std::pair<std::string_view, FruitColor> kWords[] = {
 
 /// Foliage: hue 70..170 degrees (yellow-green to cyan-green).
 constexpr Interval kFoliage{70, 170};
+
+/// Green hues whose Otsu threshold separates at least this share of their variance form two
+/// groups. A normal distribution reaches 0.64 (2/pi) and a uniform one 0.75 at best; two groups
+/// of spread sigma whose means are d apart reach 1 / (1 + 4 sigma^2 / d^2) when even: 0.8 at
+/// d = 4 sigma.
+constexpr double kTwoGreens = 0.8;
+/// Each group holds at least this share of the green hues.
+constexpr double kLeastGroup = 0.05;
+
+/// Otsu's threshold on a histogram of 1-degree bins from `from` degrees: the boundary (degrees)
+/// and the share of the variance it separates.
+std::pair<double, double> otsu(const std::vector<double>& histogram, double from) {
+    double n = 0, sum = 0, sum2 = 0;
+    for (std::size_t b = 0; b < histogram.size(); ++b) {
+        const double x = static_cast<double>(b);
+        n += histogram[b];
+        sum += histogram[b] * x;
+        sum2 += histogram[b] * x * x;
+    }
+    const double variance = n > 0 ? sum2 / n - (sum / n) * (sum / n) : 0;
+    double best = 0, at = from, below = 0, below_sum = 0;
+    for (std::size_t b = 0; b + 1 < histogram.size(); ++b) {
+        below += histogram[b];
+        below_sum += histogram[b] * static_cast<double>(b);
+        const double above = n - below;
+        if (below < kLeastGroup * n || above < kLeastGroup * n) {
+            continue;
+        }
+        const double d = below_sum / below - (sum - below_sum) / above;
+        const double between = below / n * above / n * d * d;
+        if (between > best) {
+            best = between;
+            at = from + static_cast<double>(b + 1);
+        }
+    }
+    return {at, variance > 0 ? best / variance : 0};
+}
 
 ColorFilterParams hue_rule(Interval hue, double min_saturation) {
     return {.hue_deg = hue, .saturation = Interval{min_saturation, 1}, .value = Interval{0.04, 1}};
@@ -75,6 +114,10 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     // A strided sample: the decision needs proportions, not every point.
     const std::size_t n = colours.size(), stride = std::max<std::size_t>(1, n / 100000);
     std::size_t seen = 0, grey = 0, mid_grey = 0, saturated = 0, foliage = 0;
+    // the foliage hues in 1-degree bins, from half a degree below the band (8-bit colours hit
+    // whole degrees, not the bins' edges)
+    const double from = kFoliage.lo - 0.5;
+    std::vector<double> greens(static_cast<std::size_t>(kFoliage.hi - kFoliage.lo) + 1, 0.0);
     for (std::size_t i = 0; i < n; i += stride) {
         const Hsv c = hsv(colours[i]);
         if (!(std::isfinite(c.s) && std::isfinite(c.v))) {
@@ -86,7 +129,10 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             mid_grey += c.v > 0.25 && c.v < 0.75;
         } else {
             ++saturated;
-            foliage += c.h >= kFoliage.lo && c.h <= kFoliage.hi;
+            if (c.h >= kFoliage.lo && c.h <= kFoliage.hi) {
+                ++foliage;
+                ++greens[std::min(greens.size() - 1, static_cast<std::size_t>(c.h - from))];
+            }
         }
     }
     FruitColorChoice out;
@@ -117,6 +163,24 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
         out.warnings.push_back(
             "nearly every coloured point is green: green fruit and leaves cannot be told apart by "
             "colour, so leaves were kept; check the count, or give --fruit-color");
+        const auto [at, separated] = otsu(greens, from);
+        if (separated >= kTwoGreens) {
+            const std::string groups =
+                "auto: natural colours, " + percent(foliage, saturated) +
+                " of the saturated points foliage green, in two groups of hues split at " +
+                format_number(at) + " deg (" +
+                percent(static_cast<std::size_t>(std::round(1000 * separated)), 1000) +
+                " of their variance between the groups)";
+            const double lo = std::fmod(at + 180, 360);
+            for (const Interval hue : {Interval{lo, at}, Interval{at, lo}}) {
+                out.classes.push_back(
+                    {ColorFilterParams{
+                         .hue_deg = hue, .saturation = Interval{s, 1}, .value = Interval{0.04, 1}},
+                     groups + ": hue " + format_number(hue.lo) + ".." + format_number(hue.hi) +
+                         " deg"});
+            }
+            out.reason = groups + ": every saturated point";
+        }
         return out;
     }
     out.rule = ColorFilterParams{.hue_deg = Interval{kFoliage.hi, kFoliage.lo},

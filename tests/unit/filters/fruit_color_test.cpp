@@ -67,6 +67,11 @@ TEST(FruitColor, AllGreenKeepsEverySaturatedPointAndSaysLeavesStay) {
     EXPECT_EQ(kept(c, r), 400u);
     ASSERT_EQ(r.warnings.size(), 1u);
     EXPECT_NE(r.warnings[0].find("leaves were kept"), std::string::npos);
+    // The greens are two hues (86 and 109 degrees): each is offered as a class, for the chain to
+    // tell fruit from leaves by shape; the classes part the saturated points.
+    ASSERT_EQ(r.classes.size(), 2u);
+    EXPECT_EQ(color_filter(c, r.classes[0].rule).kept.size(), 100u);
+    EXPECT_EQ(color_filter(c, r.classes[1].rule).kept.size(), 300u);
 }
 
 /// A fully saturated colour of hue `h` degrees at value 0.6.
@@ -76,6 +81,35 @@ io::Rgb hue(double h) {
     const double r[6] = {1, x, 0, 0, x, 1}, g[6] = {x, 1, 1, x, 0, 0}, b[6] = {0, 0, x, 1, 1, x};
     return {static_cast<float>(0.6 * r[k]), static_cast<float>(0.6 * g[k]),
             static_cast<float>(0.6 * b[k])};
+}
+
+TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
+    // Green hues spread as a bell (normal, sigma 8 degrees, by its quantiles) or evenly over 60
+    // degrees: Otsu's threshold separates 64 % and 75 % of their variance, under 80 %: one group.
+    // Two groups 4 sigma apart separate 80 %: offered.
+    const auto greens = [](auto hue_at) {
+        std::vector<io::Rgb> c;
+        for (int i = 0; i < 2000; ++i) {
+            c.push_back(hue(hue_at((i + 0.5) / 2000)));
+        }
+        return c;
+    };
+    const auto bell = [](double q, double mean) {
+        // the normal quantile by bisection on erfc
+        double lo = -6, hi = 6;
+        for (int k = 0; k < 60; ++k) {
+            const double mid = (lo + hi) / 2;
+            (0.5 * std::erfc(-mid / std::sqrt(2.0)) < q ? lo : hi) = mid;
+        }
+        return mean + 8 * lo;
+    };
+    EXPECT_TRUE(
+        choose_fruit_color(greens([&](double q) { return bell(q, 110); }), {}).classes.empty());
+    EXPECT_TRUE(
+        choose_fruit_color(greens([](double q) { return 80 + 60 * q; }), {}).classes.empty());
+    const FruitColorChoice two = choose_fruit_color(
+        greens([&](double q) { return q < 0.5 ? bell(2 * q, 95) : bell(2 * q - 1, 137); }), {});
+    EXPECT_EQ(two.classes.size(), 2u);
 }
 
 TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {

@@ -26,11 +26,21 @@ struct FruitColorParams {
     void validate() const;
 };
 
+/// One of two colour classes the colours alone cannot call fruit or leaves.
+struct ColourClass {
+    ColorFilterParams rule;
+    std::string reason;  ///< why and what, for the report, when this class is kept
+};
+
 /// The colour rule chosen for a cloud.
 struct FruitColorChoice {
     std::optional<ColorFilterParams> rule;  ///< empty: keep every point
     std::string reason;                     ///< what was seen and chosen, for the report
     std::vector<std::string> warnings;      ///< the choice is doubtful
+    /// When every coloured point is green but their hues form two groups (green fruit among
+    /// leaves of another green): the two, for a shape test to choose between (`rule` keeps
+    /// both; pipeline::run_chain keeps the one whose points fruit centres claim).
+    std::vector<ColourClass> classes;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -41,7 +51,10 @@ struct FruitColorChoice {
 ///    the colours say nothing about fruit: no rule, and a warning;
 ///  - otherwise natural colours: keep saturated points whose hue is not foliage green
 ///    (70..170 degrees); if fewer than 3 % of the saturated points are not green, the fruit look
-///    green too: keep every saturated point, with a warning (leaves are kept; give the word).
+///    green too: keep every saturated point, with a warning (leaves are kept; give the word);
+///    and when the green hues form two groups (Otsu's threshold on their histogram separates
+///    at least 80 % of the hue variance, and each group holds 5 % of them or more), offer
+///    the two as `classes`, split at that hue.
 [[nodiscard]] FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours,
                                                   const FruitColorParams& params);
 

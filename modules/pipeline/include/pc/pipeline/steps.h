@@ -71,8 +71,14 @@ struct ChainResult {
     std::vector<StepRecord> steps;      ///< one per step, in order
     std::vector<std::string> warnings;  ///< the steps' warnings, in order
 };
-/// `in` is taken by value: pass a temporary (or std::move) and it is not copied. `progress`,
-/// when set, receives each step's note as soon as the step is done (pc_fruitcount -v).
+/// `in` is taken by value: pass a temporary (or std::move) and it is not copied (but for green
+/// fruit among leaves, below). `progress`, when set, receives each step's note as soon as the
+/// step is done (pc_fruitcount -v).
+/// Green fruit among leaves of another green: when the colour step chosen from the cloud offers
+/// two colour classes (filters::FruitColorChoice::classes) and the split is the spheres rule, the
+/// chain runs on each class alone and keeps the run of the class whose fruit centres claimed at
+/// least half of its clustered points while the other's claimed under half that share (leaves
+/// are sheets, which few centres claim); when neither is such, it runs on every saturated point.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
