@@ -19,17 +19,26 @@ constexpr std::pair<std::string_view, FruitColor> kWords[] = {
 /// Foliage: hue 70..170 degrees (yellow-green to cyan-green).
 constexpr Interval kFoliage{70, 170};
 
-/// Green hues whose Otsu threshold separates at least this share of their variance form two
-/// groups. A normal distribution reaches 0.64 (2/pi) and a uniform one 0.75 at best; two groups
-/// of spread sigma whose means are d apart reach 1 / (1 + 4 sigma^2 / d^2) when even: 0.8 at
-/// d = 4 sigma.
-constexpr double kTwoGreens = 0.8;
-/// Each group holds at least this share of the green hues.
+/// A histogram holds two groups when Otsu's threshold leaves the means of its two sides at least
+/// this many times their root-mean-square spread apart. One normal distribution cut at its
+/// Otsu threshold gives 2.7, an even one 3.5; two normal groups of equal spread give their
+/// distance in spreads (4 and more: hardly overlapping).
+constexpr double kTwoGroups = 4;
+/// Each group holds at least this share of the histogram.
 constexpr double kLeastGroup = 0.05;
+/// Saturation is not lowered below this for pale fruit (greys of 8-bit colour reach it) ...
+constexpr double kLeastSaturation = 0.1;
+/// ... and only when min_saturation would cut off at least this share of the upper group.
+constexpr double kStraddle = 0.1;
 
-/// Otsu's threshold on a histogram of 1-degree bins from `from` degrees: the boundary (degrees)
-/// and the share of the variance it separates.
-std::pair<double, double> otsu(const std::vector<double>& histogram, double from) {
+struct Groups {
+    double at = 0;          ///< Otsu's threshold (a bin edge)
+    double separation = 0;  ///< the distance of the sides' means over their rms spread
+};
+
+/// Otsu's threshold on a histogram of bins `width` wide from `from`, and how far apart it leaves
+/// the two sides (each at least kLeastGroup of the whole).
+Groups otsu(const std::vector<double>& histogram, double from, double width) {
     double n = 0, sum = 0, sum2 = 0;
     for (std::size_t b = 0; b < histogram.size(); ++b) {
         const double x = static_cast<double>(b);
@@ -37,23 +46,29 @@ std::pair<double, double> otsu(const std::vector<double>& histogram, double from
         sum += histogram[b] * x;
         sum2 += histogram[b] * x * x;
     }
-    const double variance = n > 0 ? sum2 / n - (sum / n) * (sum / n) : 0;
-    double best = 0, at = from, below = 0, below_sum = 0;
+    double best = 0;
+    Groups g;
+    double below = 0, below_sum = 0, below_sum2 = 0;
     for (std::size_t b = 0; b + 1 < histogram.size(); ++b) {
+        const double x = static_cast<double>(b);
         below += histogram[b];
-        below_sum += histogram[b] * static_cast<double>(b);
+        below_sum += histogram[b] * x;
+        below_sum2 += histogram[b] * x * x;
         const double above = n - below;
         if (below < kLeastGroup * n || above < kLeastGroup * n) {
             continue;
         }
-        const double d = below_sum / below - (sum - below_sum) / above;
-        const double between = below / n * above / n * d * d;
+        const double m0 = below_sum / below, m1 = (sum - below_sum) / above;
+        const double between = below * above * (m1 - m0) * (m1 - m0);
         if (between > best) {
             best = between;
-            at = from + static_cast<double>(b + 1);
+            // bins' own width (1/12) keeps a spread of one-bin groups finite
+            const double v0 = below_sum2 / below - m0 * m0 + 1.0 / 12;
+            const double v1 = (sum2 - below_sum2) / above - m1 * m1 + 1.0 / 12;
+            g = {from + static_cast<double>(b + 1) * width, (m1 - m0) / std::sqrt((v0 + v1) / 2)};
         }
     }
-    return {at, variance > 0 ? best / variance : 0};
+    return g;
 }
 
 ColorFilterParams hue_rule(Interval hue, double min_saturation) {
@@ -92,20 +107,20 @@ void FruitColorParams::validate() const {
 
 FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const FruitColorParams& p) {
     p.validate();
-    const double s = p.min_saturation;
+    const double fixed = p.min_saturation;  // the words: a fixed saturation floor
     switch (p.color) {
         case FruitColor::kMask:
             return {ColorFilterParams{.min_mean = 0.5}, "mask: mean RGB > 0.5", {}};
         case FruitColor::kRed:
-            return {hue_rule({320, 35}, s), "red: hue 320..35 deg", {}};
+            return {hue_rule({320, 35}, fixed), "red: hue 320..35 deg", {}};
         case FruitColor::kOrange:
-            return {hue_rule({10, 55}, s), "orange: hue 10..55 deg", {}};
+            return {hue_rule({10, 55}, fixed), "orange: hue 10..55 deg", {}};
         case FruitColor::kYellow:
-            return {hue_rule({35, 80}, s), "yellow: hue 35..80 deg", {}};
+            return {hue_rule({35, 80}, fixed), "yellow: hue 35..80 deg", {}};
         case FruitColor::kGreen:
-            return {hue_rule({55, 170}, s), "green: hue 55..170 deg", {}};
+            return {hue_rule({55, 170}, fixed), "green: hue 55..170 deg", {}};
         case FruitColor::kPurple:
-            return {hue_rule({240, 350}, s), "purple: hue 240..350 deg", {}};
+            return {hue_rule({240, 350}, fixed), "purple: hue 240..350 deg", {}};
         case FruitColor::kAny:
             return {std::nullopt, "any: no colour rule", {}};
         case FruitColor::kAuto:
@@ -113,23 +128,51 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     }
     // A strided sample: the decision needs proportions, not every point.
     const std::size_t n = colours.size(), stride = std::max<std::size_t>(1, n / 100000);
-    std::size_t seen = 0, grey = 0, mid_grey = 0, saturated = 0, foliage = 0;
+    std::vector<Hsv> sample;
+    for (std::size_t i = 0; i < n; i += stride) {
+        const Hsv c = hsv(colours[i]);
+        if (std::isfinite(c.s) && std::isfinite(c.v)) {
+            sample.push_back(c);
+        }
+    }
+    const auto is_foliage = [](const Hsv& c) { return c.h >= kFoliage.lo && c.h <= kFoliage.hi; };
+    // Pale fruit (cream, pale yellow: saturation about 0.2) straddle min_saturation. Where the
+    // saturations of the points that are not foliage green form two groups (grey or dark ground,
+    // bark, sky; fruit) split below it, the split is the floor instead.
+    std::vector<double> saturations(100, 0.0);  // bins of 0.01
+    for (const Hsv& c : sample) {
+        if (c.v >= 0.04 && !is_foliage(c)) {
+            ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
+        }
+    }
+    const Groups pale = otsu(saturations, 0, 0.01);
+    double upper = 0, under_floor = 0;  // the upper group, and its part under min_saturation
+    for (std::size_t b = 0; b < saturations.size(); ++b) {
+        const double lo = 0.01 * static_cast<double>(b);
+        upper += lo >= pale.at - 1e-9 ? saturations[b] : 0.0;
+        under_floor +=
+            lo >= pale.at - 1e-9 && lo + 0.01 <= p.min_saturation + 1e-9 ? saturations[b] : 0.0;
+    }
+    const double s = pale.separation >= kTwoGroups && pale.at < p.min_saturation &&
+                             pale.at >= kLeastSaturation && under_floor >= kStraddle * upper
+                         ? pale.at
+                         : p.min_saturation;
+    const std::string floor = s < p.min_saturation ? ", saturation >= " + format_number(s) +
+                                                         " (the colours' own gap, below " +
+                                                         format_number(p.min_saturation) + ")"
+                                                   : "";
+    std::size_t seen = sample.size(), grey = 0, mid_grey = 0, saturated = 0, foliage = 0;
     // the foliage hues in 1-degree bins, from half a degree below the band (8-bit colours hit
     // whole degrees, not the bins' edges)
     const double from = kFoliage.lo - 0.5;
     std::vector<double> greens(static_cast<std::size_t>(kFoliage.hi - kFoliage.lo) + 1, 0.0);
-    for (std::size_t i = 0; i < n; i += stride) {
-        const Hsv c = hsv(colours[i]);
-        if (!(std::isfinite(c.s) && std::isfinite(c.v))) {
-            continue;
-        }
-        ++seen;
+    for (const Hsv& c : sample) {
         if (c.s < s) {
             ++grey;
             mid_grey += c.v > 0.25 && c.v < 0.75;
         } else {
             ++saturated;
-            if (c.h >= kFoliage.lo && c.h <= kFoliage.hi) {
+            if (is_foliage(c)) {
                 ++foliage;
                 ++greens[std::min(greens.size() - 1, static_cast<std::size_t>(c.h - from))];
             }
@@ -159,18 +202,17 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     if (static_cast<double>(fruitish) < 0.03 * static_cast<double>(saturated)) {
         out.rule = ColorFilterParams{.saturation = Interval{s, 1}, .value = Interval{0.04, 1}};
         out.reason = "auto: natural colours, " + percent(foliage, saturated) +
-                     " of the saturated points foliage green: every saturated point";
+                     " of the saturated points foliage green" + floor + ": every saturated point";
         out.warnings.push_back(
             "nearly every coloured point is green: green fruit and leaves cannot be told apart by "
             "colour, so leaves were kept; check the count, or give --fruit-color");
-        const auto [at, separated] = otsu(greens, from);
-        if (separated >= kTwoGreens) {
-            const std::string groups =
-                "auto: natural colours, " + percent(foliage, saturated) +
-                " of the saturated points foliage green, in two groups of hues split at " +
-                format_number(at) + " deg (" +
-                percent(static_cast<std::size_t>(std::round(1000 * separated)), 1000) +
-                " of their variance between the groups)";
+        const auto [at, separated] = otsu(greens, from, 1);
+        if (separated >= kTwoGroups) {
+            const std::string groups = "auto: natural colours, " + percent(foliage, saturated) +
+                                       " of the saturated points foliage green" + floor +
+                                       ", in two groups of hues split at " + format_number(at) +
+                                       " deg (their means " + format_rounded(separated) +
+                                       " spreads apart)";
             const double lo = std::fmod(at + 180, 360);
             for (const Interval hue : {Interval{lo, at}, Interval{at, lo}}) {
                 out.classes.push_back(
@@ -186,8 +228,8 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     out.rule = ColorFilterParams{.hue_deg = Interval{kFoliage.hi, kFoliage.lo},
                                  .saturation = Interval{s, 1},
                                  .value = Interval{0.04, 1}};
-    out.reason = "auto: natural colours (" + percent(saturated, seen) +
-                 " saturated): saturated and not foliage green (hue 170..70 deg)";
+    out.reason = "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor +
+                 "): saturated and not foliage green (hue 170..70 deg)";
     return out;
 }
 

@@ -402,11 +402,10 @@ std::optional<double> step_value(const ChainResult& chain,
 }
 
 /// A colour class counted alone is the fruit when its fruit centres claimed at least this share
-/// of its clustered points, and the other class's under kOtherClaims × that share. Over the 98
+/// of its clustered points, and the other class's under kOtherClaims × that share. Over the 109
 /// scenes of the condition matrix whose greens form two groups (session 29, green and lime fruit
-/// among leaves): the fruit's class 0.60-1.0, the leaves' 0-0.72 (in 95 of them under half the
-/// fruit's; in the other 3 the leaves' centres claimed 0.50-0.72 of the fruit's share, and every
-/// saturated point is counted, as before).
+/// among leaves): the fruit's class 0.60-1.0, the leaves' 0-0.72; in 105 the leaves' under half
+/// the fruit's (0-0.43), in the other 4 0.50-0.72 (every saturated point is counted, as before).
 constexpr double kFruitClaims = 0.5;
 constexpr double kOtherClaims = 0.5;
 

@@ -1,6 +1,9 @@
 // choose_fruit_color: the rule read from the colours of a cloud, and the words.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -110,6 +113,54 @@ TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
     const FruitColorChoice two = choose_fruit_color(
         greens([&](double q) { return q < 0.5 ? bell(2 * q, 95) : bell(2 * q - 1, 137); }), {});
     EXPECT_EQ(two.classes.size(), 2u);
+}
+
+/// `n` colours around `base` (0..255): brightness × 0.85..1.1, each channel ± 8, as pc_synth
+/// paints.
+std::vector<io::Rgb> around(std::array<double, 3> base, int n, std::mt19937& rng) {
+    std::uniform_real_distribution<double> tone(0.85, 1.1), jitter(-8, 8);
+    std::vector<io::Rgb> out;
+    for (int i = 0; i < n; ++i) {
+        const double t = tone(rng);
+        const auto ch = [&](double v) {
+            return static_cast<float>(std::clamp(v * t + jitter(rng), 0.0, 255.0) / 255);
+        };
+        out.push_back({ch(base[0]), ch(base[1]), ch(base[2])});
+    }
+    return out;
+}
+
+TEST(FruitColor, PaleFruitAreKeptWhereTheColoursHaveTheirOwnGap) {
+    // Cream fruit (225, 215, 170: saturation 0.24, so about half its points under 0.25) among
+    // leaves, over dark grey ground (saturation 0.03-0.2): the non-foliage saturations part
+    // between the two, and the fruit is kept whole.
+    std::mt19937 rng(7);
+    auto c = around({225, 215, 170}, 900, rng);
+    const auto leaves = around({60, 125, 45}, 600, rng);
+    std::vector<io::Rgb> ground;  // greys 10..70 of 255, a channel 1 above and 1 below
+    for (int i = 0; i < 100; ++i) {
+        const float v = static_cast<float>(10 + 0.6 * i);
+        ground.push_back({(v + 1) / 255, v / 255, (v - 1) / 255});
+    }
+    c.insert(c.end(), leaves.begin(), leaves.end());
+    c.insert(c.end(), ground.begin(), ground.end());
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.rule);
+    const auto kept = color_filter(c, *r.rule).kept;
+    const auto fruit = std::count_if(kept.begin(), kept.end(), [](auto i) { return i < 900; });
+    EXPECT_GE(fruit, 890) << r.reason;
+    EXPECT_LE(kept.size() - static_cast<std::size_t>(fruit), 10u) << r.reason;  // near-black
+    EXPECT_NE(r.reason.find("the colours' own gap"), std::string::npos) << r.reason;
+    // Without the ground nothing but the fruit is outside foliage: one group, the floor stays
+    // 0.25 (about half the fruit's points go: the cloud gives no gap to go by).
+    c.resize(1500);
+    const FruitColorChoice alone = choose_fruit_color(c, {});
+    EXPECT_EQ(alone.rule->saturation->lo, 0.25) << alone.reason;
+    // Saturated red fruit over the same ground: 0.25 cuts nothing of the fruit's group, the floor
+    // stays.
+    auto red = around({200, 40, 40}, 900, rng);
+    red.insert(red.end(), ground.begin(), ground.end());
+    EXPECT_EQ(choose_fruit_color(red, {}).rule->saturation->lo, 0.25);
 }
 
 TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {

@@ -52,9 +52,12 @@ struct FruitColorChoice {
 ///  - otherwise natural colours: keep saturated points whose hue is not foliage green
 ///    (70..170 degrees); if fewer than 3 % of the saturated points are not green, the fruit look
 ///    green too: keep every saturated point, with a warning (leaves are kept; give the word);
-///    and when the green hues form two groups (Otsu's threshold on their histogram separates
-///    at least 80 % of the hue variance, and each group holds 5 % of them or more), offer
-///    the two as `classes`, split at that hue.
+///    and when the green hues form two groups, offer the two as `classes`, split at that hue.
+/// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
+/// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
+/// of the points that are not foliage green form two groups split below min_saturation (and at
+/// 0.1 or more), and min_saturation would cut off a tenth or more of the upper group,
+/// "saturated" means at or above that split.
 [[nodiscard]] FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours,
                                                   const FruitColorParams& params);
 
