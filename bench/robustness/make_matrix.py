@@ -10,7 +10,8 @@ of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored 
 (1041-1140) each after the one before; 'shapes' (1141-1240, a tune part) and 'held-out-11'
 (1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below), as have
 'held-out-12' (1341-1440), drawn after held-out-11 had been scored, 'held-out-13'
-(1441-1540), drawn after held-out-12 had been, and 'held-out-14' (1541-1640), after held-out-13."""
+(1441-1540), drawn after held-out-12 had been, 'held-out-14' (1541-1640), after held-out-13, and
+'held-out-15' (1641-1740), after held-out-14."""
 import random
 import os
 
@@ -133,7 +134,7 @@ for part, seed, family, spec, colour, rgb in LATER_PARTS:
 ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1.25, 'truss': 0.8,
            'citrus': 0.93, 'crab': 0.9, 'olive': 1.35, 'kiwi': 1.35, 'apricot': 1.1, 'fig': 1.2,
            'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75,
-           'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8}
+           'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8, 'walnut': 1.1}
 SHAPE_PARTS = [
     # part, seed, new families, new colours, families left out (not yet scored)
     ('shapes', 2036,
@@ -167,6 +168,13 @@ SHAPE_PARTS = [
      {'persimmon': (0.035, '--species apple --fruit-radius 0.035 --bunch-min 1 --bunch-max 3 '
                            '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
      {'salmon': (235, 150, 120)}, set()),
+    # 15 (session 29, after held-out-14 had been scored): walnut-like, 20 mm green husks, aspect
+    # 1.1, single or up to three touching; olive-green fruit (hue 88 degrees, value 0.47: as dark
+    # as the leaves, a little yellower, as walnut husks, green figs and unripe fruit are)
+    ('held-out-15', 2041,
+     {'walnut': (0.020, '--species apple --fruit-radius 0.02 --bunch-min 1 --bunch-max 3 '
+                        '--touch-gap 0.002 --fruit-count 100 --canopy 0.7,0.7,0.55')},
+     {'olive-green': (90, 120, 55)}, set()),
 ]
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
     families.update(new_families)
