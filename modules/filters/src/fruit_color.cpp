@@ -24,6 +24,8 @@ constexpr Interval kFoliage{70, 170};
 /// Otsu threshold gives 2.7, an even one 3.5; two normal groups of equal spread give their
 /// distance in spreads (4 and more: hardly overlapping).
 constexpr double kTwoGroups = 4;
+/// Under this share of the saturated points outside foliage hue, the fruit may be green too.
+constexpr double kFewFruitish = 0.1;
 /// Each group holds at least this share of the histogram.
 constexpr double kLeastGroup = 0.05;
 /// Saturation is not lowered below this for pale fruit (greys of 8-bit colour reach it) ...
@@ -166,6 +168,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     // whole degrees, not the bins' edges)
     const double from = kFoliage.lo - 0.5;
     std::vector<double> greens(static_cast<std::size_t>(kFoliage.hi - kFoliage.lo) + 1, 0.0);
+    std::vector<double> values(100, 0.0);  // their values, in bins of 0.01
     for (const Hsv& c : sample) {
         if (c.s < s) {
             ++grey;
@@ -175,6 +178,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             if (is_foliage(c)) {
                 ++foliage;
                 ++greens[std::min(greens.size() - 1, static_cast<std::size_t>(c.h - from))];
+                ++values[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.v))];
             }
         }
     }
@@ -198,29 +202,50 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             "no colour filter was applied; give --fruit-color or a colour rule if they can");
         return out;
     }
+    // Green fruit among leaves: the foliage-green points in two groups, of hue (a yellower and
+    // a bluer green) or of value (dark fruit among lighter leaves), whichever lie further apart,
+    // offered as two classes of the saturated points; returns the groups in words ("" if none).
+    const Groups by_hue = otsu(greens, from, 1), by_value = otsu(values, 0, 0.01);
+    const bool hue_wins = by_hue.separation >= by_value.separation;
+    const Groups& g = hue_wins ? by_hue : by_value;
+    const auto offer = [&](const std::string& head) {
+        if (g.separation < kTwoGroups) {
+            return std::string();
+        }
+        const std::string groups = head + ", in two groups of " +
+                                   (hue_wins ? "hues split at " + format_number(g.at) + " deg"
+                                             : "values split at " + format_number(g.at)) +
+                                   " (their means " + format_rounded(g.separation) +
+                                   " spreads apart)";
+        const ColorFilterParams all{.saturation = Interval{s, 1}, .value = Interval{0.04, 1}};
+        if (hue_wins) {
+            const double lo = std::fmod(g.at + 180, 360);
+            for (const Interval hue : {Interval{lo, g.at}, Interval{g.at, lo}}) {
+                ColorFilterParams rule = all;
+                rule.hue_deg = hue;
+                out.classes.push_back({rule, groups + ": hue " + format_number(hue.lo) + ".." +
+                                                 format_number(hue.hi) + " deg"});
+            }
+        } else {
+            for (const Interval value : {Interval{0.04, g.at}, Interval{g.at, 1}}) {
+                ColorFilterParams rule = all;
+                rule.value = value;
+                out.classes.push_back({rule, groups + ": value " + format_number(value.lo) + ".." +
+                                                 format_number(value.hi)});
+            }
+        }
+        return groups;
+    };
     const std::size_t fruitish = saturated - foliage;
     if (static_cast<double>(fruitish) < 0.03 * static_cast<double>(saturated)) {
         out.rule = ColorFilterParams{.saturation = Interval{s, 1}, .value = Interval{0.04, 1}};
-        out.reason = "auto: natural colours, " + percent(foliage, saturated) +
-                     " of the saturated points foliage green" + floor + ": every saturated point";
+        const std::string head = "auto: natural colours, " + percent(foliage, saturated) +
+                                 " of the saturated points foliage green" + floor;
+        out.reason = head + ": every saturated point";
         out.warnings.push_back(
             "nearly every coloured point is green: green fruit and leaves cannot be told apart by "
             "colour, so leaves were kept; check the count, or give --fruit-color");
-        const auto [at, separated] = otsu(greens, from, 1);
-        if (separated >= kTwoGroups) {
-            const std::string groups = "auto: natural colours, " + percent(foliage, saturated) +
-                                       " of the saturated points foliage green" + floor +
-                                       ", in two groups of hues split at " + format_number(at) +
-                                       " deg (their means " + format_rounded(separated) +
-                                       " spreads apart)";
-            const double lo = std::fmod(at + 180, 360);
-            for (const Interval hue : {Interval{lo, at}, Interval{at, lo}}) {
-                out.classes.push_back(
-                    {ColorFilterParams{
-                         .hue_deg = hue, .saturation = Interval{s, 1}, .value = Interval{0.04, 1}},
-                     groups + ": hue " + format_number(hue.lo) + ".." + format_number(hue.hi) +
-                         " deg"});
-            }
+        if (const std::string groups = offer(head); !groups.empty()) {
             out.reason = groups + ": every saturated point";
         }
         return out;
@@ -228,8 +253,19 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     out.rule = ColorFilterParams{.hue_deg = Interval{kFoliage.hi, kFoliage.lo},
                                  .saturation = Interval{s, 1},
                                  .value = Interval{0.04, 1}};
-    out.reason = "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor +
-                 "): saturated and not foliage green (hue 170..70 deg)";
+    const std::string head =
+        "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor + ")";
+    out.reason = head + ": saturated and not foliage green (hue 170..70 deg)";
+    // Few points outside foliage hue (dark green fruit stray out of it: a dark colour's hue is
+    // noisy): the fruit may be among the greens; the rule competes with the two groups.
+    if (static_cast<double>(fruitish) < kFewFruitish * static_cast<double>(saturated)) {
+        if (const std::string groups =
+                offer(head + ", " + percent(fruitish, saturated) + " of them not foliage green");
+            !groups.empty()) {
+            out.rule_competes = true;
+            out.reason = groups + ": saturated and not foliage green (hue 170..70 deg)";
+        }
+    }
     return out;
 }
 

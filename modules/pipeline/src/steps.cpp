@@ -475,18 +475,28 @@ ChainResult by_shape(io::Blob in,
     }
     const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
     const auto share = [](double x) { return format_number(std::round(100 * x)) + " %"; };
+    std::optional<ChainResult> by_rule;
+    double rule_claimed = 0;
+    if (c.rule_competes) {
+        rest.color = c.rule;
+        by_rule = run_chain(in, rest);
+        rule_claimed = step_value(*by_rule, "recursive_split", "claimed").value_or(0);
+    }
     ChainResult out;
     std::string rule;
-    if (claimed[best] >= kFruitClaims && claimed[other] < kOtherClaims * claimed[best]) {
+    if (claimed[best] >= kFruitClaims && claimed[other] < kOtherClaims * claimed[best] &&
+        claimed[best] > rule_claimed) {
         out = std::move(runs[best]);
         rule = c.classes[best].reason + ", the group whose fruit centres claim its points (" +
-               share(claimed[best]) + "; " + share(claimed[other]) + " of the other's)";
+               share(claimed[best]) + "; " + share(claimed[other]) + " of the other's" +
+               (c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "") + ")";
     } else {
         runs.clear();
         rest.color = c.rule;
-        out = run_chain(std::move(in), rest);
+        out = by_rule ? std::move(*by_rule) : run_chain(std::move(in), rest);
         rule = c.reason + " (each group counted alone: fruit centres claimed " + share(claimed[0]) +
-               " and " + share(claimed[1]) + " of their points)";
+               " and " + share(claimed[1]) + " of their points" +
+               (c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "") + ")";
         out.warnings.insert(out.warnings.begin(), c.warnings.begin(), c.warnings.end());
     }
     out.steps.front().rule = rule;

@@ -86,6 +86,25 @@ io::Rgb hue(double h) {
             static_cast<float>(0.6 * b[k])};
 }
 
+TEST(FruitColor, DarkGreenFruitAmongLighterLeavesAreOfferedByValue) {
+    // Near-black green fruit (hue 90, value 0.25) among leaves (hue 109, value 0.49): hue is
+    // foliage for both, value parts them. A dark colour's hue is noisy: some fruit points stray
+    // out of the foliage band (hue 60 here). With 6 % of the saturated points outside the band
+    // the rule stays "not foliage" but competes with the two groups of value; with 1 %, nearly
+    // every point is green and the groups are offered against keeping every saturated point.
+    const io::Rgb fruit{0.1875f, 0.25f, 0.125f}, stray{0.25f, 0.25f, 0.125f},
+        leaf{0.235f, 0.49f, 0.176f};
+    for (const auto& [strays, competes] : {std::pair{100, true}, std::pair{15, false}}) {
+        const auto c = repeat({{fruit, 500}, {stray, strays}, {leaf, 1000}});
+        const FruitColorChoice r = choose_fruit_color(c, {});
+        ASSERT_EQ(r.classes.size(), 2u) << r.reason;
+        EXPECT_EQ(r.rule_competes, competes) << r.reason;
+        EXPECT_NE(r.reason.find("values split"), std::string::npos) << r.reason;
+        EXPECT_EQ(color_filter(c, r.classes[0].rule).kept.size(), 500u + strays);
+        EXPECT_EQ(color_filter(c, r.classes[1].rule).kept.size(), 1000u);
+    }
+}
+
 TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
     // Green hues spread as a bell (normal, sigma 8 degrees, by its quantiles) or evenly over 60
     // degrees: Otsu's threshold separates 64 % and 75 % of their variance, under 80 %: one group.

@@ -286,6 +286,24 @@ TEST(Chain, GreenFruitAmongLeavesOfAnotherGreenAreToldApartByShape) {
     }
 }
 
+/// Near-black green fruit (50, 65, 35: hue 90, value 0.25) among lighter leaves: the fruit's hue
+/// is foliage green, and only the few points whose noisy hue strays out of the band passed the
+/// colour rule (28 counted of 50 on such a scene of the matrix). Their value parts them from the
+/// leaves, and counted alone the dark group is claimed by fruit centres.
+TEST(Chain, DarkGreenFruitAmongLighterLeavesAreFoundByValueAndShape) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 40;
+    sp.canopy = {0.5, 0.5, 0.4};
+    sp.fruit_rgb = {50, 65, 35};
+    const scenes::Rendered r = scenes::render(
+        scenes::make_scene(sp), {.mode = scenes::Mode::kExplicit, .voxel = 0.01, .leaf_leak = 0.3});
+    const auto present = static_cast<double>(
+        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
+    EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present, 1.0);
+    EXPECT_NE(c.steps.front().rule.find("values split"), std::string::npos) << c.steps.front().rule;
+}
+
 /// Two greens that are both fruit (every other fruit painted the leaves' green, no leaves): each
 /// group counted alone is claimed by fruit centres, so neither is dropped.
 TEST(Chain, TwoGreensThatAreBothFruitAreBothKept) {

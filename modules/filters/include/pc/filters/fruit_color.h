@@ -37,10 +37,14 @@ struct FruitColorChoice {
     std::optional<ColorFilterParams> rule;  ///< empty: keep every point
     std::string reason;                     ///< what was seen and chosen, for the report
     std::vector<std::string> warnings;      ///< the choice is doubtful
-    /// When every coloured point is green but their hues form two groups (green fruit among
-    /// leaves of another green): the two, for a shape test to choose between (`rule` keeps
-    /// both; pipeline::run_chain keeps the one whose points fruit centres claim).
+    /// When (nearly) every coloured point is green but the greens form two groups (green fruit
+    /// among leaves of another green, dark fruit among lighter leaves): the two, for a shape
+    /// test to choose between (pipeline::run_chain keeps the one whose points fruit centres
+    /// claim, else `rule`).
     std::vector<ColourClass> classes;
+    /// `rule` is itself a candidate (few points outside foliage hue): a class is kept instead
+    /// only where its fruit centres claim more of its points than the rule's claim of its own
+    bool rule_competes = false;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -52,7 +56,9 @@ struct FruitColorChoice {
 ///  - otherwise natural colours: keep saturated points whose hue is not foliage green
 ///    (70..170 degrees); if fewer than 3 % of the saturated points are not green, the fruit look
 ///    green too: keep every saturated point, with a warning (leaves are kept; give the word);
-///    and when the green hues form two groups, offer the two as `classes`, split at that hue.
+///    and when the green points form two groups, of hue or of value (the further apart), offer
+///    the two as `classes`; with fewer than 10 % of the saturated points outside foliage hue
+///    (dark green fruit stray out of it), the same, and the rule competes (`rule_competes`).
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at

@@ -74,11 +74,12 @@ struct ChainResult {
 /// `in` is taken by value: pass a temporary (or std::move) and it is not copied (but for green
 /// fruit among leaves, below). `progress`, when set, receives each step's note as soon as the
 /// step is done (pc_fruitcount -v).
-/// Green fruit among leaves of another green: when the colour step chosen from the cloud offers
-/// two colour classes (filters::FruitColorChoice::classes) and the split is the spheres rule, the
-/// chain runs on each class alone and keeps the run of the class whose fruit centres claimed at
-/// least half of its clustered points while the other's claimed under half that share (leaves
-/// are sheets, which few centres claim); when neither is such, it runs on every saturated point.
+/// Green fruit among leaves: when the colour step chosen from the cloud offers two colour
+/// classes (filters::FruitColorChoice::classes) and the split is the spheres rule, the chain
+/// runs on each class alone and keeps the run of the class whose fruit centres claimed at least
+/// half of its clustered points while the other's claimed under half that share (leaves are
+/// sheets, which few centres claim), and, when the rule competes, more than the rule's run
+/// claimed of its own; else the run of the chosen rule.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
