@@ -11,7 +11,7 @@ of the rest); 'held-out-2' (241-340) was drawn after 'held-out' had been scored 
 (1241-1340) have fruit of each family's shape (spheroids, SHAPE_PARTS below), as have
 'held-out-12' (1341-1440), drawn after held-out-11 had been scored, 'held-out-13'
 (1441-1540), drawn after held-out-12 had been, 'held-out-14' (1541-1640), after held-out-13, and
-'held-out-15' (1641-1740), after held-out-14."""
+'held-out-15' (1641-1740), after held-out-14, and 'held-out-16' (1741-1840), after held-out-15."""
 import random
 import os
 
@@ -134,7 +134,8 @@ for part, seed, family, spec, colour, rgb in LATER_PARTS:
 ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1.25, 'truss': 0.8,
            'citrus': 0.93, 'crab': 0.9, 'olive': 1.35, 'kiwi': 1.35, 'apricot': 1.1, 'fig': 1.2,
            'lychee': 1.05, 'blueberry': 0.8, 'pear': 1.55, 'lemon': 1.35, 'date': 1.75,
-           'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8, 'walnut': 1.1}
+           'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8, 'walnut': 1.1,
+           'gooseberry': 1.15}
 SHAPE_PARTS = [
     # part, seed, new families, new colours, families left out (not yet scored)
     ('shapes', 2036,
@@ -175,6 +176,13 @@ SHAPE_PARTS = [
      {'walnut': (0.020, '--species apple --fruit-radius 0.02 --bunch-min 1 --bunch-max 3 '
                         '--touch-gap 0.002 --fruit-count 100 --canopy 0.7,0.7,0.55')},
      {'olive-green': (90, 120, 55)}, set()),
+    # 16 (session 29, after held-out-15 had been scored): gooseberry-like, 9 mm, aspect 1.15, in
+    # clusters of 2-6; translucent yellow-green fruit (hue 68 degrees, saturation 0.38: at the
+    # edge of foliage hue and paler than the other greens)
+    ('held-out-16', 2042,
+     {'gooseberry': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 2 --bunch-max 6 '
+                            '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
+     {'pale-green': (200, 210, 130)}, set()),
 ]
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
     families.update(new_families)
