@@ -73,6 +73,35 @@ Groups otsu(const std::vector<double>& histogram, double from, double width) {
     return g;
 }
 
+bool is_foliage(const Hsv& c) { return c.h >= kFoliage.lo && c.h <= kFoliage.hi; }
+
+/// The saturation from which a colour counts as saturated: `line`, or lower for pale fruit
+/// (cream, pale yellow: saturation about 0.2, straddling 0.25). Where the saturations of the
+/// points that are not foliage green form two groups (grey or dark ground, bark, sky; fruit)
+/// split between kLeastSaturation and `line`, and `line` would cut off kStraddle of the upper
+/// group, the split.
+double saturation_line(const std::vector<Hsv>& sample, double line) {
+    std::vector<double> saturations(100, 0.0);  // bins of 0.01
+    for (const Hsv& c : sample) {
+        if (c.v >= 0.04 && !is_foliage(c)) {
+            ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
+        }
+    }
+    const Groups pale = otsu(saturations, 0, 0.01);
+    double upper = 0, under_line = 0;  // the upper group, and its part under `line`
+    for (std::size_t b = 0; b < saturations.size(); ++b) {
+        const double lo = 0.01 * static_cast<double>(b);
+        if (lo >= pale.at - 1e-9) {
+            upper += saturations[b];
+            under_line += lo + 0.01 <= line + 1e-9 ? saturations[b] : 0.0;
+        }
+    }
+    return pale.separation >= kTwoGroups && pale.at < line && pale.at >= kLeastSaturation &&
+                   under_line >= kStraddle * upper
+               ? pale.at
+               : line;
+}
+
 ColorFilterParams hue_rule(Interval hue, double min_saturation) {
     return {.hue_deg = hue, .saturation = Interval{min_saturation, 1}, .value = Interval{0.04, 1}};
 }
@@ -137,28 +166,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             sample.push_back(c);
         }
     }
-    const auto is_foliage = [](const Hsv& c) { return c.h >= kFoliage.lo && c.h <= kFoliage.hi; };
-    // Pale fruit (cream, pale yellow: saturation about 0.2) straddle min_saturation. Where the
-    // saturations of the points that are not foliage green form two groups (grey or dark ground,
-    // bark, sky; fruit) split below it, the split is the floor instead.
-    std::vector<double> saturations(100, 0.0);  // bins of 0.01
-    for (const Hsv& c : sample) {
-        if (c.v >= 0.04 && !is_foliage(c)) {
-            ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
-        }
-    }
-    const Groups pale = otsu(saturations, 0, 0.01);
-    double upper = 0, under_floor = 0;  // the upper group, and its part under min_saturation
-    for (std::size_t b = 0; b < saturations.size(); ++b) {
-        const double lo = 0.01 * static_cast<double>(b);
-        upper += lo >= pale.at - 1e-9 ? saturations[b] : 0.0;
-        under_floor +=
-            lo >= pale.at - 1e-9 && lo + 0.01 <= p.min_saturation + 1e-9 ? saturations[b] : 0.0;
-    }
-    const double s = pale.separation >= kTwoGroups && pale.at < p.min_saturation &&
-                             pale.at >= kLeastSaturation && under_floor >= kStraddle * upper
-                         ? pale.at
-                         : p.min_saturation;
+    const double s = saturation_line(sample, p.min_saturation);
     const std::string floor = s < p.min_saturation ? ", saturation >= " + format_number(s) +
                                                          " (the colours' own gap, below " +
                                                          format_number(p.min_saturation) + ")"
