@@ -45,7 +45,7 @@ words=$($b/pc_fruitcount --help | tr -s ' \n' ' ' | grep -o -- '--fruit-color ar
 newest=$(cut -d'|' -f2 bench/robustness/scenes.txt | grep '^held-out-' | sort -V | tail -n 1)
 # score_scene LINE: one scenes.txt line counted by each method; its rows in $dir/scenes/ID.rows
 score_scene() {
-  local id part family mode rs noise colour units args stem present method extra start end score
+  local id part family mode rs noise colour units args stem present method extra start end score out
   local count f1 warnings
   IFS='|' read -r id part family mode rs noise colour units args <<<"$1"
   stem=$dir/scenes/$id
@@ -67,15 +67,19 @@ print(statistics.median(f["radius"] for f in t["fruits"] if f["points"] > 0))' "
       x:*) IFS=, read -r -a extra <<<"${method#x:}" ;;
       *) extra=(--preset "$method") ;;
     esac
+    # the method's files: ID.out.pcd, ID.report.json, ID.err for the default, ID.METHOD.* for
+    # the others (so that the default's stay to be read after a run of several methods)
+    out=$stem
+    [ "$method" = default ] || out=$stem.${method//[^A-Za-z0-9_-]/_}
     start=$(date +%s.%N)
-    if $b/pc_fruitcount -i "$stem.pcd" "${extra[@]}" --cloud "$stem.out.pcd" -o "$stem.report.json" 2>"$stem.err"; then
+    if $b/pc_fruitcount -i "$stem.pcd" "${extra[@]}" --cloud "$out.out.pcd" -o "$out.report.json" 2>"$out.err"; then
       end=$(date +%s.%N)
-      score=$($b/pc_eval -i "$stem.out.pcd" --truth "$stem.json" --gt "$present" --csv | tail -n 1)
+      score=$($b/pc_eval -i "$out.out.pcd" --truth "$stem.json" --gt "$present" --csv | tail -n 1)
       count=$(echo "$score" | cut -d, -f3); f1=$(echo "$score" | cut -d, -f11)
     else
       end=$(date +%s.%N); count=-1; f1=0
     fi
-    warnings=$(grep -c 'warning' "$stem.err" || true)
+    warnings=$(grep -c 'warning' "$out.err" || true)
     awk -v a="$start" -v b="$end" -v c="$count" -v p="$present" -v f1="$f1" -v w="$warnings" \
         -v row="$id,$part,$family,$mode,$rs,$noise,$colour,$units,$method" \
         'BEGIN { e = p > 0 ? (c - p) / p : 0; printf "%s,%s,%s,%.4f,%.4f,%.2f,%s\n", row, p, c, f1, e, b - a, w }' >>"$stem.rows"
