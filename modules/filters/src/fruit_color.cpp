@@ -18,6 +18,8 @@ constexpr std::pair<std::string_view, FruitColor> kWords[] = {
 
 /// Foliage: hue 70..170 degrees (yellow-green to cyan-green).
 constexpr Interval kFoliage{70, 170};
+/// Natural colours darker than this (HSV value) are black: their hue and saturation are noise.
+constexpr double kBlack = 0.04;
 
 /// A histogram holds two groups when Otsu's threshold leaves the means of its two sides at least
 /// this many times their root-mean-square spread apart. One normal distribution cut at its
@@ -83,7 +85,7 @@ bool is_foliage(const Hsv& c) { return c.h >= kFoliage.lo && c.h <= kFoliage.hi;
 double saturation_line(const std::vector<Hsv>& sample, double line) {
     std::vector<double> saturations(100, 0.0);  // bins of 0.01
     for (const Hsv& c : sample) {
-        if (c.v >= 0.04 && !is_foliage(c)) {
+        if (c.v >= kBlack && !is_foliage(c)) {
             ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
         }
     }
@@ -102,8 +104,16 @@ double saturation_line(const std::vector<Hsv>& sample, double line) {
                : line;
 }
 
+/// Saturated (>= min_saturation) and not black.
+ColorFilterParams saturated_rule(double min_saturation) {
+    return {.saturation = Interval{min_saturation, 1}, .value = Interval{kBlack, 1}};
+}
+
+/// Saturated, not black, of that hue.
 ColorFilterParams hue_rule(Interval hue, double min_saturation) {
-    return {.hue_deg = hue, .saturation = Interval{min_saturation, 1}, .value = Interval{0.04, 1}};
+    ColorFilterParams rule = saturated_rule(min_saturation);
+    rule.hue_deg = hue;
+    return rule;
 }
 
 std::string percent(std::size_t part, std::size_t whole) {
@@ -225,18 +235,16 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
                                              : "values split at " + format_number(g.at)) +
                                    " (their means " + format_rounded(g.separation) +
                                    " spreads apart)";
-        const ColorFilterParams all{.saturation = Interval{s, 1}, .value = Interval{0.04, 1}};
         if (hue_wins) {
             const double lo = std::fmod(g.at + 180, 360);
             for (const Interval hue : {Interval{lo, g.at}, Interval{g.at, lo}}) {
-                ColorFilterParams rule = all;
-                rule.hue_deg = hue;
-                out.classes.push_back({rule, groups + ": hue " + format_number(hue.lo) + ".." +
-                                                 format_number(hue.hi) + " deg"});
+                out.classes.push_back({hue_rule(hue, s), groups + ": hue " + format_number(hue.lo) +
+                                                             ".." + format_number(hue.hi) +
+                                                             " deg"});
             }
         } else {
-            for (const Interval value : {Interval{0.04, g.at}, Interval{g.at, 1}}) {
-                ColorFilterParams rule = all;
+            for (const Interval value : {Interval{kBlack, g.at}, Interval{g.at, 1}}) {
+                ColorFilterParams rule = saturated_rule(s);
                 rule.value = value;
                 out.classes.push_back({rule, groups + ": value " + format_number(value.lo) + ".." +
                                                  format_number(value.hi)});
@@ -246,7 +254,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     };
     const std::size_t fruitish = saturated - foliage;
     if (static_cast<double>(fruitish) < 0.03 * static_cast<double>(saturated)) {
-        out.rule = ColorFilterParams{.saturation = Interval{s, 1}, .value = Interval{0.04, 1}};
+        out.rule = saturated_rule(s);
         const std::string head = "auto: natural colours, " + percent(foliage, saturated) +
                                  " of the saturated points foliage green" + floor;
         out.reason = head + ": every saturated point";
@@ -258,9 +266,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
         }
         return out;
     }
-    out.rule = ColorFilterParams{.hue_deg = Interval{kFoliage.hi, kFoliage.lo},
-                                 .saturation = Interval{s, 1},
-                                 .value = Interval{0.04, 1}};
+    out.rule = hue_rule({kFoliage.hi, kFoliage.lo}, s);
     const std::string head =
         "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor + ")";
     out.reason = head + ": saturated and not foliage green (hue 170..70 deg)";

@@ -482,21 +482,22 @@ ChainResult by_shape(io::Blob in,
         by_rule = run_chain(in, rest);
         rule_claimed = step_value(*by_rule, "recursive_split", "claimed").value_or(0);
     }
+    const std::string of_rule =
+        c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "";
     ChainResult out;
     std::string rule;
     if (claimed[best] >= kFruitClaims && claimed[other] < kOtherClaims * claimed[best] &&
         claimed[best] > rule_claimed) {
         out = std::move(runs[best]);
         rule = c.classes[best].reason + ", the group whose fruit centres claim its points (" +
-               share(claimed[best]) + "; " + share(claimed[other]) + " of the other's" +
-               (c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "") + ")";
+               share(claimed[best]) + "; " + share(claimed[other]) + " of the other's" + of_rule +
+               ")";
     } else {
         runs.clear();
         rest.color = c.rule;
         out = by_rule ? std::move(*by_rule) : run_chain(std::move(in), rest);
         rule = c.reason + " (each group counted alone: fruit centres claimed " + share(claimed[0]) +
-               " and " + share(claimed[1]) + " of their points" +
-               (c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "") + ")";
+               " and " + share(claimed[1]) + " of their points" + of_rule + ")";
         out.warnings.insert(out.warnings.begin(), c.warnings.begin(), c.warnings.end());
     }
     out.steps.front().rule = rule;
