@@ -11,12 +11,12 @@ namespace sy = pc::scenes;
 
 namespace {
 
-std::array<std::uint8_t, 3> parse_rgb(const std::string& text) {
-    const auto t = pc::cli::parse_triple("fruit-rgb", text);
+std::array<std::uint8_t, 3> parse_rgb(const std::string& option, const std::string& text) {
+    const auto t = pc::cli::parse_triple(option, text);
     std::array<std::uint8_t, 3> out{};
     for (int c = 0; c < 3; ++c) {
         if (!(t[c] >= 0 && t[c] <= 255) || t[c] != static_cast<int>(t[c])) {
-            throw pc::InvalidArgument("--fruit-rgb: channels must be integers 0..255, got '" +
+            throw pc::InvalidArgument("--" + option + ": channels must be integers 0..255, got '" +
                                       text + "'");
         }
         out[c] = static_cast<std::uint8_t>(t[c]);
@@ -123,8 +123,18 @@ int main(int argc, char** argv) {
                 "leaves per m^3 of canopy (occluders; some leak as points)");
     tool.option("leaf-radius", &sp.leaf_radius, "mean leaf radius, m");
     tool.option(
-        "fruit-rgb", "240,165,95", [&](const std::string& s) { sp.fruit_rgb = parse_rgb(s); },
+        "fruit-rgb", "240,165,95",
+        [&](const std::string& s) { sp.fruit_rgb = parse_rgb("fruit-rgb", s); },
         "fruit colour R,G,B (0..255); default by species");
+    tool.option("branches", &sp.branches,
+                "wood: a trunk forking into this many main branches, two side branches each (0: "
+                "no wood)");
+    tool.option("trunk-radius", &sp.trunk_radius, "wood: trunk radius, m");
+    tool.option(
+        "wood-rgb", "100,80,60",
+        [&](const std::string& s) { sp.wood_rgb = parse_rgb("wood-rgb", s); },
+        "wood: bark colour R,G,B (0..255)");
+    tool.option("wood-leak", &rp.wood_leak, "wood: fraction of the branches exported");
     tool.option("voxel", &rp.voxel, "voxel edge, m: explicit occupancy and surface sampling");
     tool.option("cameras", &rp.cameras, "implicit: cameras on three rings around the canopy");
     tool.option("min-views", &rp.min_views,
@@ -158,8 +168,9 @@ int main(int argc, char** argv) {
         const sy::Rendered r = sy::render(scene, rp);
         io.note(std::to_string(scene.fruits.size()) + " fruit in " +
                 std::to_string(scene.bunch_count) + " bunches, " +
-                std::to_string(scene.leaves.size()) + " leaves, " + std::to_string(r.xyz.size()) +
-                " points");
+                std::to_string(scene.leaves.size()) + " leaves, " +
+                std::to_string(scene.branches.size()) + " pieces of wood, " +
+                std::to_string(r.xyz.size()) + " points");
         if (!truth.empty()) {
             pc::cli::write_text_file(truth, truth_json(species, sp, rp, scene, r));
         }

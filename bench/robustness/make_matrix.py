@@ -35,8 +35,17 @@ UNITS = {'m': '', 'mm': '--scale 1000', 'normalised': '--scale 0.45 --offset 0.1
 SAMPLED = ('surface', 'sfm', 'stripes', 'volume')
 
 
-def draw(rng, families, colours, ids, part):
-    """One line per id; part(family, colour, mode) names its split (it may draw from rng)."""
+# Wood (session 30): bark colours of real trees (apple and pear grey-brown, walnut and plum
+# brown, cherry red-brown, wet or shaded bark near black); trunks 3-8 cm in radius.
+BARK = {'grey-brown': (110, 100, 90), 'brown': (100, 75, 50), 'red-brown': (120, 65, 55),
+        'dark-bark': (60, 50, 45)}
+
+
+def draw(rng, families, colours, ids, part, wood=False):
+    """One line per id; part(family, colour, mode) names its split (it may draw from rng).
+    wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
+    parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
+    masks leak some wood, as they leak leaves), sampled modes all of them."""
     for i in ids:
         family = rng.choice(list(families))
         mode = rng.choice(MODES)
@@ -58,6 +67,12 @@ def draw(rng, families, colours, ids, part):
                 args += f' --shading {shading}'
         if UNITS[units]:
             args += ' ' + UNITS[units]
+        if wood:
+            bark = rng.choice(list(BARK))
+            args += (f' --branches {rng.randint(3, 8)} --trunk-radius {rng.uniform(0.03, 0.08):.3f}'
+                     f' --wood-rgb {",".join(map(str, BARK[bark]))}')
+            if mode not in SAMPLED:
+                args += ' --wood-leak 0.2'
         yield f'{i:03d}|{part(family, colour, mode)}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}'
 
 
@@ -184,18 +199,33 @@ SHAPE_PARTS = [
                             '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
      {'pale-green': (200, 210, 130)}, set()),
 ]
-for part, seed, new_families, new_colours, left_out in SHAPE_PARTS:
+# Wood (session 30, written before any method saw it): every scene so far had fruit, leaves,
+# ground and outliers, no trunk or branches; a natural-colour export of a whole tree has them.
+# 'wood' (1841-1940) is a tune part: the families and colours seen so far with a tree of bark
+# (BARK above); 'held-out-17' (1941-2040) adds quince-like fruit (38 mm, aspect 1.2, single or in
+# pairs) of russet (a bark-like brown, lighter: russet pears and apples), scored once when the
+# method for wood is final.
+WOOD_PARTS = [
+    ('wood', 2043, {}, {}, {'gooseberry'}),
+    ('held-out-17', 2044,
+     {'quince': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 2 '
+                        '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
+     {'russet': (165, 115, 65)}, set()),
+]
+ASPECTS['quince'] = 1.2
+for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
     shaped = {f: (r, flags + (f' --aspect {ASPECTS[f]:g} --aspect-spread 0.1' if ASPECTS[f] != 1 else ''))
               for f, (r, flags) in families.items() if f not in left_out}
-    palette = {c: rgb for c, rgb in colours.items() if not (left_out and c == 'grey-blue')}
+    unseen = {'grey-blue'} if 'blueberry' in left_out else {'pale-green'} if 'gooseberry' in left_out else set()
+    palette = {c: rgb for c, rgb in colours.items() if c not in unseen}
     lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
-                  lambda family, colour, mode, part=part: part)
+                  lambda family, colour, mode, part=part: part, wood=(part, seed) in [w[:2] for w in WOOD_PARTS])
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
 with open(out, 'w') as f:
     f.write('\n'.join(lines) + '\n')
-counts = ', '.join(f'{sum(f"|{p}|" in l for l in lines)} in {p}' for p, *_ in LATER_PARTS + SHAPE_PARTS)
+counts = ', '.join(f'{sum(f"|{p}|" in l for l in lines)} in {p}' for p, *_ in LATER_PARTS + SHAPE_PARTS + WOOD_PARTS)
 print(f'{out}: {len(lines)} scenes, {sum("|tune|" in l for l in lines)} tune, {counts}')

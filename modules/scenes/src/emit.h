@@ -40,6 +40,13 @@ inline void add_point(Rendered& out, const Vec3& p, std::uint32_t rgb, std::uint
 void add_ground_and_outliers(
     const Scene& s, const RenderParams& p, std::size_t fruit_total, Rng& rng, Rendered& out);
 
+/// Wood (the scene's branches): points on each branch's side, one per spacing squared, from the
+/// stream (seed, 5); each branch exported with probability `wood_leak`. Lattice modes snap them to
+/// voxel centres (one per voxel; implicit jitters them as its leaves), sampled modes jitter them
+/// by noise × spacing as their leaves. Points inside a fruit are dropped. Natural colours: the
+/// bark colour, shaded as fruit are; mask colours: near black.
+void add_wood(const Scene& s, const RenderParams& p, Rendered& out);
+
 /// `out` in a fixed shuffle, so that nothing downstream can lean on the generation order, with
 /// the points of each of the `fruits` counted.
 Rendered shuffled_points(const Rendered& out, std::size_t fruits, Rng& rng);

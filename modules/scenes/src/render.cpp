@@ -323,6 +323,7 @@ void RenderParams::validate() const {
     require(leaf_leak >= 0 && leaf_leak <= 1, "leaf_leak must be in [0, 1]");
     require(background >= 0 && background <= 100, "background must be in [0, 100]");
     require(outliers >= 0 && outliers <= 100, "outliers must be in [0, 100]");
+    require(wood_leak >= 0 && wood_leak <= 1, "wood_leak must be in [0, 1]");
     require(noise >= 0 && noise <= 1, "noise must be in [0, 1] radii");
     require(holes >= 0 && holes <= 20, "holes must be in [0, 20] per fruit");
     require(duplicates >= 0 && duplicates <= 1, "duplicates must be in [0, 1]");
@@ -518,6 +519,7 @@ Rendered render_lattice(const Scene& s, const RenderParams& p) {
         render_solid(s, p, fruit, tone, rng, emit);
     }
     add_clutter(s, p, leaves, out.xyz.size(), rng, emit);
+    add_wood(s, p, out);
     return shuffled_points(out, s.fruits.size(), rng);
 }
 

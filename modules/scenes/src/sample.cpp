@@ -251,6 +251,7 @@ Rendered render_sampled(const Scene& s, const RenderParams& p) {
     const std::size_t fruit_total = out.xyz.size();
     sampler.leaves();
     add_ground_and_outliers(s, p, fruit_total, rng, out);
+    add_wood(s, p, out);
     return shuffled_points(out, s.fruits.size(), rng);
 }
 

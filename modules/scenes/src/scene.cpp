@@ -64,6 +64,54 @@ private:
 // its volume is the sphere's of `radius`. Every function keeps a sphere's arithmetic as it was.
 double equatorial(const Fruit& f) { return f.radius / std::cbrt(f.aspect); }
 
+/// How far the ray from `from` (inside the canopy ellipsoid scaled by `fraction`) along the unit
+/// `d` runs before it leaves that ellipsoid: the larger root of |(from + t d) / canopy| = fraction.
+double to_canopy_edge(const Vec3& from, const Vec3& d, const Vec3& canopy, double fraction) {
+    double a = 0, b = 0, c = -fraction * fraction;
+    for (int k = 0; k < 3; ++k) {
+        const double f = from[k] / canopy[k], g = d[k] / canopy[k];
+        a += g * g;
+        b += 2 * f * g;
+        c += f * f;
+    }
+    return (-b + std::sqrt(std::max(0.0, b * b - 4 * a * c))) / (2 * a);
+}
+
+/// The trunk from the ground to a fork at 0.3 of the canopy's height below its centre, main
+/// branches spread around it rising 15-60 degrees to 0.85 of the canopy, two side branches from
+/// each (from 0.3-0.8 of its length, towards it give or take 0.9 of a random direction, a quarter
+/// to nearly half the canopy long, inside 0.95 of it) ending in twigs.
+std::vector<Branch> grow_wood(const SceneParams& p) {
+    Rng rng(p.seed, 4);
+    const double trunk = p.trunk_radius, twig = std::min(0.004, 0.2 * trunk);
+    const Vec3 fork{0, 0, -0.3 * p.canopy[2]};
+    std::vector<Branch> wood{{{0, 0, -p.canopy[2] - 0.3}, fork, trunk, 0.8 * trunk}};
+    const double reach = (p.canopy[0] + p.canopy[1] + p.canopy[2]) / 3;
+    const auto along = [](const Vec3& from, const Vec3& d, double t) {
+        return Vec3{from[0] + t * d[0], from[1] + t * d[1], from[2] + t * d[2]};
+    };
+    for (std::uint32_t b = 0; b < p.branches; ++b) {
+        const double azimuth = 2 * kPi * (b + rng.uniform(-0.3, 0.3)) / p.branches;
+        const double elevation = rng.uniform(15, 60) * kPi / 180;
+        const Vec3 d{std::cos(elevation) * std::cos(azimuth),
+                     std::cos(elevation) * std::sin(azimuth), std::sin(elevation)};
+        const Branch main{fork, along(fork, d, to_canopy_edge(fork, d, p.canopy, 0.85)),
+                          0.5 * trunk * rng.uniform(0.8, 1.2), 0.15 * trunk};
+        wood.push_back(main);
+        for (int side = 0; side < 2; ++side) {
+            const double t = rng.uniform(0.3, 0.8);
+            const Vec3 from = along(main.from, sub(main.to, main.from), t);
+            const Vec3 r = rng.direction();
+            const Vec3 e = unit(along(d, r, 0.9));
+            const double length =
+                std::min(rng.uniform(0.25, 0.45) * reach, to_canopy_edge(from, e, p.canopy, 0.95));
+            wood.push_back({from, along(from, e, length),
+                            0.6 * (main.r_from + t * (main.r_to - main.r_from)), twig});
+        }
+    }
+    return wood;
+}
+
 }  // namespace
 
 Vec3 Fruit::at(const Vec3& d, double depth) const {
@@ -144,6 +192,8 @@ void SceneParams::validate() const {
     require(leaf_radius > 0 && std::isfinite(leaf_radius), "leaf_radius must be > 0");
     require(aspect >= 0.25 && aspect <= 4, "aspect must be in [0.25, 4]");
     require(aspect_spread >= 0 && aspect_spread < 1, "aspect_spread must be in [0, 1)");
+    require(branches <= 100, "branches must be in 0..100");
+    require(trunk_radius > 0 && trunk_radius <= 1, "trunk_radius must be in (0, 1] m");
 }
 
 const std::vector<std::string>& species_names() {
@@ -293,6 +343,10 @@ Scene make_scene(const SceneParams& p) {
             {{u * d[0] * p.canopy[0], u * d[1] * p.canopy[1], u * d[2] * p.canopy[2]},
              rng.direction(),
              p.leaf_radius * rng.uniform(0.7, 1.3)});
+    }
+    if (p.branches > 0) {
+        s.branches = grow_wood(p);
+        s.wood_rgb = p.wood_rgb;
     }
     return s;
 }

@@ -28,7 +28,8 @@ enum class Mode {
 
 /// How points are coloured.
 enum class Colors {
-    kNatural,  ///< fruit_rgb, leaves green, ground dark; sampled modes add `shading`
+    kNatural,  ///< fruit_rgb, leaves green, ground dark, wood wood_rgb; `shading` shades fruit
+               ///< and wood of the sampled modes
     kMask,     ///< a semantic export: fruit near white, leaves and ground near black
 };
 
@@ -56,6 +57,7 @@ struct RenderParams {
     double leaf_leak = 0.1;   ///< fraction of leaves exported as green points
     double background = 0.1;  ///< dark ground points, as a fraction of fruit points
     double outliers = 0.005;  ///< bright sparse points, as a fraction of fruit points
+    double wood_leak = 1;     ///< fraction of the scene's branches exported (bark-coloured)
     // sampled modes
     double noise = 0;         ///< σ of each point's jitter, as a fraction of its fruit's radius
     double holes = 1;         ///< sfm: mean number of empty caps per fruit

@@ -46,10 +46,19 @@ struct Leaf {
     double radius = 0;
 };
 
+/// A piece of wood: a truncated cone from `from` (radius `r_from`) to `to` (radius `r_to`). The
+/// trunk and branches of the tree; the renderers drop its points that lie inside a fruit.
+struct Branch {
+    Vec3 from{}, to{};
+    double r_from = 0, r_to = 0;
+};
+
 /// The layout of a synthetic fruit tree, in metres, canopy centred on the origin.
 struct Scene {
     std::vector<Fruit> fruits;
     std::vector<Leaf> leaves;
+    std::vector<Branch> branches;  ///< the trunk first, then branches and twigs (empty: no wood)
+    std::array<std::uint8_t, 3> wood_rgb{100, 80, 60};
     Vec3 canopy{1, 1, 1};  ///< half axes of the canopy ellipsoid
     std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
     std::uint32_t bunch_count = 0;
@@ -73,6 +82,11 @@ struct SceneParams {
     double aspect = 1;  ///< mean polar / equatorial half axis of the fruit (1 = spheres)
     double aspect_spread =
         0;  ///< aspects uniform in aspect·(1 ± spread), axes in random directions
+    /// Wood: a trunk from the ground (0.3 m below the canopy) forking into this many main
+    /// branches, each with two side branches (0: no wood, the scene as before)
+    std::uint32_t branches = 0;
+    double trunk_radius = 0.05;  ///< m; main branches start at half of it, twigs end at 4 mm
+    std::array<std::uint8_t, 3> wood_rgb{100, 80, 60};  ///< bark (grey-brown)
     std::uint64_t seed = 1;
 
     void validate() const;  ///< throws pc::InvalidArgument naming the field
@@ -85,8 +99,9 @@ struct SceneParams {
 [[nodiscard]] SceneParams species(std::string_view name);
 
 /// Places the fruit bunch by bunch (rejection sampling: fruit never overlap, touching fruit of a
-/// bunch are 0..touch_gap apart, other bunches at least `separation` away) and scatters leaves.
-/// Deterministic for a seed. Throws pc::InvalidArgument when the canopy cannot hold the fruit.
+/// bunch are 0..touch_gap apart, other bunches at least `separation` away), scatters leaves and
+/// grows the wood (its own random stream: fruit and leaves do not depend on it). Deterministic for
+/// a seed. Throws pc::InvalidArgument when the canopy cannot hold the fruit.
 [[nodiscard]] Scene make_scene(const SceneParams& params);
 
 }  // namespace pc::scenes
