@@ -30,7 +30,7 @@ while [ $# -gt 0 ]; do
     *) echo "robustness.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
-b=build/bin
+b=${PC_BIN:-build/bin}  # another build's binaries: PC_BIN=DIR (rebuild build/ while a run goes on)
 if [ -n "$from_rows" ]; then
   rows=$from_rows
 else

@@ -65,6 +65,20 @@ std::string truth_json(const std::string& species,
     j["fruit_points"] =
         std::accumulate(r.fruit_points.begin(), r.fruit_points.end(), std::uint64_t{0});
     j["fruits"] = fruits;
+    if (!scene.branches.empty()) {  // the wood: truncated cones, in the written units
+        const auto at = [&](const sy::Vec3& v) {
+            return sy::Vec3{v[0] * rp.scale + rp.offset[0], v[1] * rp.scale + rp.offset[1],
+                            v[2] * rp.scale + rp.offset[2]};
+        };
+        nlohmann::ordered_json wood = nlohmann::ordered_json::array();
+        for (const auto& b : scene.branches) {
+            wood.push_back({{"from", at(b.from)},
+                            {"to", at(b.to)},
+                            {"r_from", b.r_from * rp.scale},
+                            {"r_to", b.r_to * rp.scale}});
+        }
+        j["branches"] = wood;
+    }
     return j.dump(1) + "\n";
 }
 
