@@ -26,7 +26,8 @@ constexpr double kBlack = 0.04;
 /// Otsu threshold gives 2.7, an even one 3.5; two normal groups of equal spread give their
 /// distance in spreads (4 and more: hardly overlapping).
 constexpr double kTwoGroups = 4;
-/// Under this share of the saturated points outside foliage hue, the fruit may be green too.
+/// From this share of the saturated points outside foliage hue, the rule's fruit are likely the
+/// fruit: the green groups are tried only where its centres claim too little (bark, not fruit).
 constexpr double kFewFruitish = 0.1;
 /// Each group holds at least this share of the histogram.
 constexpr double kLeastGroup = 0.05;
@@ -270,15 +271,15 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     const std::string head =
         "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor + ")";
     out.reason = head + ": saturated and not foliage green (hue 170..70 deg)";
-    // Few points outside foliage hue (dark green fruit stray out of it: a dark colour's hue is
-    // noisy): the fruit may be among the greens; the rule competes with the two groups.
-    if (static_cast<double>(fruitish) < kFewFruitish * static_cast<double>(saturated)) {
-        if (const std::string groups =
-                offer(head + ", " + percent(fruitish, saturated) + " of them not foliage green");
-            !groups.empty()) {
-            out.rule_competes = true;
-            out.reason = groups + ": saturated and not foliage green (hue 170..70 deg)";
-        }
+    // The greens in two groups: the fruit may be among them (dark green fruit whose noisy hue
+    // strays out of foliage, green fruit beside brown bark): the rule competes with the groups.
+    if (const std::string groups =
+            offer(head + ", " + percent(fruitish, saturated) + " of them not foliage green");
+        !groups.empty()) {
+        out.rule_competes = true;
+        out.rule_first =
+            static_cast<double>(fruitish) >= kFewFruitish * static_cast<double>(saturated);
+        out.reason = groups + ": saturated and not foliage green (hue 170..70 deg)";
     }
     return out;
 }

@@ -319,8 +319,11 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         step.record.rule = r.solid ? "solid fruit: their outer layer voted" : "fruit surfaces";
         const double expected = kSolidBallPoints * std::pow(r.fruit_radius / r.spacing, 3);
         const double typical = median_cluster_points(step.blob, r.cluster_count);
-        if (r.solid && r.peaks > 0 && r.fruit_radius > 0 && r.spacing > 0 &&
-            typical < kTooFewForABall * expected) {
+        const bool balls = r.solid && r.peaks > 0 && r.fruit_radius > 0 && r.spacing > 0;
+        if (balls) {
+            step.record.values.emplace_back("ball_fill", typical / expected);
+        }
+        if (balls && typical < kTooFewForABall * expected) {
             step.warnings.push_back(
                 "the median fruit holds " + format_rounded(typical) +
                 " points, far fewer than a solid ball of the fruit radius " +
@@ -468,20 +471,43 @@ ChainResult by_shape(io::Blob in,
     rest.fruit_color.reset();
     std::vector<ChainResult> runs;
     std::vector<double> claimed;
-    for (const filters::ColourClass& k : c.classes) {
-        rest.color = k.rule;
-        runs.push_back(run_chain(in, rest));
-        claimed.push_back(step_value(runs.back(), "recursive_split", "claimed").value_or(0));
-    }
-    const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
+    // The share its fruit centres claimed; none when they are no fruit: in a solid cloud, parts
+    // far from filling a ball of the fruit radius (the tree's wood counted alone: a few "fruit"
+    // the size of the tree, 1-10 % filled).
+    const auto claims = [](const ChainResult& run) {
+        const auto fill = step_value(run, "recursive_split", "ball_fill");
+        return fill && *fill < kTooFewForABall
+                   ? 0.0
+                   : step_value(run, "recursive_split", "claimed").value_or(0);
+    };
     const auto share = [](double x) { return format_number(std::round(100 * x)) + " %"; };
+    const auto done = [&](ChainResult out, const std::string& rule) {
+        out.steps.front().rule = rule;
+        out.notes.front() += " (" + rule + ")";
+        if (progress) {
+            for (const std::string& note : out.notes) {
+                progress(note);
+            }
+        }
+        return out;
+    };
     std::optional<ChainResult> by_rule;
     double rule_claimed = 0;
     if (c.rule_competes) {
         rest.color = c.rule;
         by_rule = run_chain(in, rest);
-        rule_claimed = step_value(*by_rule, "recursive_split", "claimed").value_or(0);
+        rule_claimed = claims(*by_rule);
+        if (c.rule_first && rule_claimed >= kFewClaimed) {
+            return done(std::move(*by_rule), c.reason + " (its fruit centres claim " +
+                                                 share(rule_claimed) + " of its points)");
+        }
     }
+    for (const filters::ColourClass& k : c.classes) {
+        rest.color = k.rule;
+        runs.push_back(run_chain(in, rest));
+        claimed.push_back(claims(runs.back()));
+    }
+    const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
     const std::string of_rule =
         c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "";
     ChainResult out;
@@ -500,14 +526,7 @@ ChainResult by_shape(io::Blob in,
                " and " + share(claimed[1]) + " of their points" + of_rule + ")";
         out.warnings.insert(out.warnings.begin(), c.warnings.begin(), c.warnings.end());
     }
-    out.steps.front().rule = rule;
-    out.notes.front() += " (" + rule + ")";
-    if (progress) {
-        for (const std::string& note : out.notes) {
-            progress(note);
-        }
-    }
-    return out;
+    return done(std::move(out), rule);
 }
 
 }  // namespace

@@ -105,6 +105,22 @@ TEST(FruitColor, DarkGreenFruitAmongLighterLeavesAreOfferedByValue) {
     }
 }
 
+TEST(FruitColor, GreenGroupsBesideBarkAreTriedAfterTheRule) {
+    // The same dark fruit and leaves beside brown bark (hue 30, saturation 0.5): with a tenth or
+    // more of the saturated points outside foliage hue the rule is tried first (it keeps the
+    // bark, where the fruit may be), the groups only when its centres claim too few points.
+    const io::Rgb fruit{0.1875f, 0.25f, 0.125f}, bark{0.39f, 0.29f, 0.196f},
+        leaf{0.235f, 0.49f, 0.176f};
+    for (const auto& [barks, first] : {std::pair{600, true}, std::pair{100, false}}) {
+        const auto c = repeat({{fruit, 500}, {bark, barks}, {leaf, 1000}});
+        const FruitColorChoice r = choose_fruit_color(c, {});
+        ASSERT_EQ(r.classes.size(), 2u) << r.reason;
+        EXPECT_TRUE(r.rule_competes) << r.reason;
+        EXPECT_EQ(r.rule_first, first) << r.reason;
+        EXPECT_EQ(color_filter(c, *r.rule).kept.size(), static_cast<std::size_t>(barks));
+    }
+}
+
 TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
     // Green hues spread as a bell (normal, sigma 8 degrees, by its quantiles) or evenly over 60
     // degrees: Otsu's threshold separates 64 % and 75 % of their variance, under 80 %: one group.

@@ -286,6 +286,34 @@ TEST(Chain, GreenFruitAmongLeavesOfAnotherGreenAreToldApartByShape) {
     }
 }
 
+/// Green fruit among leaves of another green, beside a tree of brown bark (a natural-colour
+/// export of the whole tree): the bark is the only colour outside foliage green, so the "not
+/// foliage" rule kept the wood alone (1-2 counted of 40); the green groups are tried when the
+/// rule's centres claim too few of its points (the wood counted alone: no ball filled).
+TEST(Chain, GreenFruitBesideBrownBarkAreFoundByShape) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 40;
+    sp.canopy = {0.5, 0.5, 0.4};
+    sp.fruit_rgb = {125, 175, 60};
+    sp.branches = 5;
+    sp.wood_rgb = {100, 75, 50};
+    for (std::uint64_t seed : {1}) {
+        sp.seed = seed;
+        const scenes::Rendered r = scenes::render(
+            scenes::make_scene(sp),
+            {.mode = scenes::Mode::kSurface, .voxel = 0.005, .leaf_leak = 0.3, .seed = seed});
+        const auto present = static_cast<double>(std::count_if(
+            r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+        const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
+        EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
+                    0.1 * present)
+            << "seed " << seed;
+        EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"),
+                  std::string::npos)
+            << c.steps.front().rule;
+    }
+}
+
 /// Near-black green fruit (50, 65, 35: hue 90, value 0.25) among lighter leaves: the fruit's hue
 /// is foliage green, and only the few points whose noisy hue strays out of the band passed the
 /// colour rule (28 counted of 50 on such a scene of the matrix). Their value parts them from the

@@ -42,9 +42,14 @@ struct FruitColorChoice {
     /// test to choose between (pipeline::run_chain keeps the one whose points fruit centres
     /// claim, else `rule`).
     std::vector<ColourClass> classes;
-    /// `rule` is itself a candidate (few points outside foliage hue): a class is kept instead
-    /// only where its fruit centres claim more of its points than the rule's claim of its own
+    /// `rule` is itself a candidate (3 % or more of the saturated points outside foliage hue):
+    /// a class is kept instead only where its fruit centres claim more of its points than the
+    /// rule's claim of its own
     bool rule_competes = false;
+    /// ... and it is tried first, and kept unless its centres claim too few of its points to
+    /// be fruit (10 % or more of the saturated points outside foliage hue: the groups are tried
+    /// where those are bark, not fruit)
+    bool rule_first = false;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -57,8 +62,9 @@ struct FruitColorChoice {
 ///    (70..170 degrees); if fewer than 3 % of the saturated points are not green, the fruit look
 ///    green too: keep every saturated point, with a warning (leaves are kept; give the word);
 ///    and when the green points form two groups, of hue or of value (the further apart), offer
-///    the two as `classes`; with fewer than 10 % of the saturated points outside foliage hue
-///    (dark green fruit stray out of it), the same, and the rule competes (`rule_competes`).
+///    the two as `classes`; with more points outside foliage hue (dark green fruit stray out of
+///    it, brown bark), the same, and the rule competes (`rule_competes`; from 10 % it is tried
+///    first, `rule_first`).
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at
