@@ -152,13 +152,13 @@ ASPECTS = {'peach': 1.0, 'apple': 0.88, 'plum': 1.12, 'cherry': 0.95, 'grape': 1
            'mango': 1.5, 'avocado': 1.4, 'persimmon': 0.8, 'walnut': 1.1,
            'gooseberry': 1.15}
 SHAPE_PARTS = [
-    # part, seed, new families, new colours, families left out (not yet scored)
+    # part, seed, new families, new colours, families and colours left out (not yet scored)
     ('shapes', 2036,
      {'pear': (0.032, '--species apple --fruit-radius 0.032 --bunch-min 1 --bunch-max 2 '
                       '--touch-gap 0.003 --fruit-count 70 --canopy 0.7,0.7,0.55'),
       'lemon': (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 --bunch-max 3 '
                        '--touch-gap 0.002 --fruit-count 70 --canopy 0.7,0.7,0.55')},
-     {}, {'blueberry'}),
+     {}, {'blueberry', 'grey-blue'}),
     ('held-out-11', 2037,
      {'date': (0.011, '--species plum --fruit-radius 0.011 --bunch-min 3 --bunch-max 8 '
                       '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
@@ -206,7 +206,7 @@ SHAPE_PARTS = [
 # pairs) of russet (a bark-like brown, lighter: russet pears and apples), scored once when the
 # method for wood is final.
 WOOD_PARTS = [
-    ('wood', 2043, {}, {}, {'gooseberry'}),
+    ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
      {'quince': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 2 '
                         '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
@@ -218,10 +218,10 @@ for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     colours.update(new_colours)
     shaped = {f: (r, flags + (f' --aspect {ASPECTS[f]:g} --aspect-spread 0.1' if ASPECTS[f] != 1 else ''))
               for f, (r, flags) in families.items() if f not in left_out}
-    unseen = {'grey-blue'} if 'blueberry' in left_out else {'pale-green'} if 'gooseberry' in left_out else set()
-    palette = {c: rgb for c, rgb in colours.items() if c not in unseen}
+    palette = {c: rgb for c, rgb in colours.items() if c not in left_out}
     lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
-                  lambda family, colour, mode, part=part: part, wood=(part, seed) in [w[:2] for w in WOOD_PARTS])
+                  lambda family, colour, mode, part=part: part,
+                  wood=part in {w[0] for w in WOOD_PARTS})
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
