@@ -12,42 +12,6 @@ namespace pc::scenes::detail {
 
 namespace {
 
-const Vec3& light() {
-    static const Vec3 l = unit({0.3, 0.2, 1.0});
-    return l;
-}
-
-/// Colours: natural (base × tone × shading, ±8 noise) or mask (fruit near white, the rest near
-/// black).
-class Painter {
-public:
-    Painter(const RenderParams& p, Rng& rng) : p_(p), rng_(rng) {}
-
-    std::uint32_t fruit(const std::array<std::uint8_t, 3>& base, double tone, const Vec3& normal) {
-        return paint(base, tone, std::max(0.0, dot(normal, light())), true);
-    }
-    std::uint32_t leaf(const Vec3& normal) {
-        return paint(kLeafRgb, 1.0, std::abs(dot(normal, light())), false);
-    }
-
-private:
-    std::uint32_t paint(const std::array<std::uint8_t, 3>& base,
-                        double tone,
-                        double facing,
-                        bool is_fruit) {
-        if (p_.colors == Colors::kMask) {
-            const double c = is_fruit ? rng_.uniform(243, 255) : rng_.uniform(0, 12);
-            return pack(c, c, c);
-        }
-        const double s = tone * (1 - p_.shading * (1 - facing)) * rng_.uniform(0.95, 1.05);
-        return pack(base[0] * s + rng_.uniform(-8, 8), base[1] * s + rng_.uniform(-8, 8),
-                    base[2] * s + rng_.uniform(-8, 8));
-    }
-
-    const RenderParams& p_;
-    Rng& rng_;
-};
-
 std::uint64_t poisson(double mean, Rng& rng) {
     const double limit = std::exp(-mean);
     std::uint64_t k = 0;

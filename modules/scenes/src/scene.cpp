@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <cmath>
-#include <unordered_map>
 
 #include <pc/core/error.h>
 #include <pc/core/random.h>
@@ -25,40 +24,6 @@ double dist2(const Vec3& a, const Vec3& b) {
     const double dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
     return dx * dx + dy * dy + dz * dz;
 }
-
-/// Fruit bucketed by a cell at least as large as the widest interaction, for overlap checks.
-class FruitGrid {
-public:
-    explicit FruitGrid(double cell) : cell_(cell) {}
-    void add(const Fruit& f, std::uint32_t index) { cells_[key(f.centre)].push_back(index); }
-    template <class F>
-    void for_near(const Vec3& c, F&& visit) const {
-        const auto ix = coord(c[0]), iy = coord(c[1]), iz = coord(c[2]);
-        for (std::int64_t dx = -1; dx <= 1; ++dx) {
-            for (std::int64_t dy = -1; dy <= 1; ++dy) {
-                for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                    const auto it = cells_.find(cell_key(ix + dx, iy + dy, iz + dz));
-                    if (it != cells_.end()) {
-                        for (auto i : it->second) {
-                            visit(i);
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-private:
-    [[nodiscard]] std::int64_t coord(double v) const {
-        return static_cast<std::int64_t>(std::floor(v / cell_));
-    }
-    [[nodiscard]] std::uint64_t key(const Vec3& c) const {
-        return cell_key(coord(c[0]), coord(c[1]), coord(c[2]));
-    }
-
-    double cell_;
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
-};
 
 // A spheroid's half axes: equatorial e = radius / cbrt(aspect) (twice), polar e × aspect, so that
 // its volume is the sphere's of `radius`. Every function keeps a sphere's arithmetic as it was.
@@ -280,7 +245,7 @@ Scene make_scene(const SceneParams& p) {
     };
     const auto place = [&](const Fruit& x) {
         s.fruits.push_back(x);
-        grid.add(s.fruits.back(), static_cast<std::uint32_t>(s.fruits.size() - 1));
+        grid.add(s.fruits.back().centre, static_cast<std::uint32_t>(s.fruits.size() - 1));
     };
     // A new fruit's size and shape (spheres draw no shape, so their scenes stay as they were).
     const auto shaped = [&](std::uint32_t bunch) {
