@@ -26,6 +26,10 @@ constexpr double kBlack = 0.04;
 /// Otsu threshold gives 2.7, an even one 3.5; two normal groups of equal spread give their
 /// distance in spreads (4 and more: hardly overlapping).
 constexpr double kTwoGroups = 4;
+/// The groups of the rule's points are offered from this separation: looser than kTwoGroups (a
+/// shape test chooses between them), above one normal distribution's 2.7. On 13 scenes of the
+/// matrix's wood part, the best of the three splits lay 2.7-9.0 spreads apart, 7 of them 3-4.
+constexpr double kSomeGroups = 3;
 /// From this share of the saturated points outside foliage hue, the rule's fruit are likely the
 /// fruit: the green groups are tried only where its centres claim too little (bark, not fruit).
 constexpr double kFewFruitish = 0.1;
@@ -115,6 +119,54 @@ ColorFilterParams hue_rule(Interval hue, double min_saturation) {
     ColorFilterParams rule = saturated_rule(min_saturation);
     rule.hue_deg = hue;
     return rule;
+}
+
+/// The points the "saturated and not foliage" rule keeps in two groups (fruit beside bark, ground
+/// or another fruit colour): Otsu's split of their hue (from 170 deg round through red to 70),
+/// saturation or value, whichever leaves the sides further apart; none under kSomeGroups.
+std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample, double s) {
+    std::vector<double> hues(260, 0.0), saturations(100, 0.0), values(100, 0.0);
+    for (const Hsv& c : sample) {
+        if (c.s >= s && c.v >= kBlack && c.h >= 0 && !is_foliage(c)) {
+            ++hues[std::min<std::size_t>(
+                259, static_cast<std::size_t>(std::fmod(c.h - kFoliage.hi + 360, 360)))];
+            ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
+            ++values[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.v))];
+        }
+    }
+    const Groups by_hue = otsu(hues, 0, 1), by_saturation = otsu(saturations, 0, 0.01),
+                 by_value = otsu(values, 0, 0.01);
+    const double best =
+        std::max({by_hue.separation, by_saturation.separation, by_value.separation});
+    std::vector<ColourClass> out;
+    if (best < kSomeGroups) {
+        return out;
+    }
+    const std::string apart = " (their means " + format_rounded(best) + " spreads apart)";
+    const Interval not_foliage{kFoliage.hi, kFoliage.lo};
+    if (best == by_hue.separation) {
+        const double at = std::fmod(kFoliage.hi + by_hue.at, 360);
+        for (const Interval hue : {Interval{kFoliage.hi, at}, Interval{at, kFoliage.lo}}) {
+            out.push_back({hue_rule(hue, s), "hue " + format_number(hue.lo) + ".." +
+                                                 format_number(hue.hi) + " deg of two groups" +
+                                                 apart});
+        }
+    } else if (best == by_saturation.separation) {
+        for (const Interval sat : {Interval{s, by_saturation.at}, Interval{by_saturation.at, 1}}) {
+            ColorFilterParams rule = hue_rule(not_foliage, s);
+            rule.saturation = sat;
+            out.push_back({rule, "saturation " + format_number(sat.lo) + ".." +
+                                     format_number(sat.hi) + " of two groups" + apart});
+        }
+    } else {
+        for (const Interval value : {Interval{kBlack, by_value.at}, Interval{by_value.at, 1}}) {
+            ColorFilterParams rule = hue_rule(not_foliage, s);
+            rule.value = value;
+            out.push_back({rule, "value " + format_number(value.lo) + ".." +
+                                     format_number(value.hi) + " of two groups" + apart});
+        }
+    }
+    return out;
 }
 
 std::string percent(std::size_t part, std::size_t whole) {
@@ -271,6 +323,10 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     const std::string head =
         "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor + ")";
     out.reason = head + ": saturated and not foliage green (hue 170..70 deg)";
+    out.rule_classes = rule_groups(sample, s);
+    for (ColourClass& k : out.rule_classes) {
+        k.reason = out.reason + ", " + k.reason;
+    }
     // The greens in two groups: the fruit may be among them (dark green fruit whose noisy hue
     // strays out of foliage, green fruit beside brown bark): the rule competes with the groups.
     if (const std::string groups =

@@ -212,17 +212,23 @@ double radius_from_normals(const Sample& s, const Normals& nm, bool feet) {
     return dist.size() < 50 ? 0.0 : log_mode(dist);
 }
 
+/// Points the other clusters must hold for the largest to be left out of rough_size().
+constexpr std::size_t kOthersHold = 100;
+
 /// A first, rough fruit size: the RMS distance of a cluster's points from its centroid, the
 /// median over clusters of 10 sampled points or more; over points (each counts its cluster's)
 /// when DBSCAN left fragments, so that the many small pieces of each fruit do not set it (an SfM
 /// fruit 20 spacings wide, its far side ten times sparser, came apart into 590 pieces for 50
-/// fruit and this size was a fifth of theirs).
+/// fruit and this size was a fifth of theirs). One cluster holding more than half of those points
+/// would set it alone: it is left out when the others hold kOthersHold points or more (a tree's
+/// trunk and branches in one piece, 69-94 % of the points, made it 4-27 times the fruit's).
 double rough_size(const Sample& s, bool fragments) {
     std::unordered_map<std::uint32_t, std::vector<V3>> by;
     for (std::size_t i = 0; i < s.view.size; ++i) {
         by[s.label[i]].push_back(vec(s.view[i]));
     }
-    std::vector<double> rms, per_point;
+    std::vector<double> rms;
+    std::vector<std::size_t> held;
     for (const auto& [label, c] : by) {
         if (c.size() < 10) {
             continue;
@@ -237,11 +243,22 @@ double rough_size(const Sample& s, bool fragments) {
             sum += (p - mean).squaredNorm();
         }
         rms.push_back(std::sqrt(sum / static_cast<double>(c.size())));
-        if (fragments) {
-            per_point.insert(per_point.end(), c.size(), rms.back());
+        held.push_back(c.size());
+    }
+    if (rms.empty() || !fragments) {
+        return rms.empty() ? 0.0 : median(rms);
+    }
+    const std::size_t largest =
+        static_cast<std::size_t>(std::max_element(held.begin(), held.end()) - held.begin());
+    const std::size_t total = std::accumulate(held.begin(), held.end(), std::size_t{0});
+    const std::size_t others = total - held[largest];
+    std::vector<double> per_point;
+    for (std::size_t k = 0; k < rms.size(); ++k) {
+        if (k != largest || held[k] <= others || others < kOthersHold) {
+            per_point.insert(per_point.end(), held[k], rms[k]);
         }
     }
-    return rms.empty() ? 0.0 : median(fragments ? per_point : rms);
+    return median(per_point);
 }
 
 /// floor(v) as an integer, clamped far beyond any key's range (no overflow for huge or tiny

@@ -121,6 +121,24 @@ TEST(FruitColor, GreenGroupsBesideBarkAreTriedAfterTheRule) {
     }
 }
 
+TEST(FruitColor, TheRulesPointsInTwoGroupsAreOfferedForTheShapeTest) {
+    // Dark red fruit (hue 357, saturation 0.8) beside brown bark (hue 30, saturation 0.5) and
+    // leaves: both pass "saturated and not foliage"; their saturations lie far apart, so the
+    // rule's points are offered as two groups, each exactly one of them. One fruit colour alone
+    // offers none.
+    const io::Rgb fruit{0.39f, 0.078f, 0.098f}, bark{0.39f, 0.29f, 0.196f},
+        leaf{0.235f, 0.49f, 0.176f};
+    const auto c = repeat({{fruit, 400}, {bark, 600}, {leaf, 1000}});
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_EQ(r.rule_classes.size(), 2u) << r.reason;
+    std::array<std::size_t, 2> n{color_filter(c, r.rule_classes[0].rule).kept.size(),
+                                 color_filter(c, r.rule_classes[1].rule).kept.size()};
+    std::sort(n.begin(), n.end());
+    EXPECT_EQ(n[0], 400u);
+    EXPECT_EQ(n[1], 600u);
+    EXPECT_TRUE(choose_fruit_color(repeat({{fruit, 400}, {leaf, 1000}}), {}).rule_classes.empty());
+}
+
 TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
     // Green hues spread as a bell (normal, sigma 8 degrees, by its quantiles) or evenly over 60
     // degrees: Otsu's threshold separates 64 % and 75 % of their variance, under 80 %: one group.

@@ -314,6 +314,31 @@ TEST(Chain, GreenFruitBesideBrownBarkAreFoundByShape) {
     }
 }
 
+/// Dark red fruit beside brown bark, sampled as structure from motion: the trunk and branches,
+/// one DBSCAN cluster holding most of the points, pass the "saturated and not foliage" rule with
+/// the fruit (1 counted of 40 here before: the tree's size read as the fruit's; 38-47 in such
+/// scenes with the fruit's size, the bark's fake centres counted). The rule's points form two
+/// groups of saturation; counted alone, the fruit's is claimed by fruit centres and the bark's
+/// is not.
+TEST(Chain, RedFruitBesideBrownBarkAreTheRulesGroupThatCentresClaim) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 40;
+    sp.canopy = {0.5, 0.5, 0.4};
+    sp.fruit_rgb = {100, 20, 25};
+    sp.branches = 5;
+    sp.trunk_radius = 0.06;
+    sp.wood_rgb = {100, 75, 50};
+    const scenes::Rendered r = scenes::render(
+        scenes::make_scene(sp), {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1});
+    const auto present = static_cast<double>(
+        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
+    EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
+                0.1 * present);
+    EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"), std::string::npos)
+        << c.steps.front().rule;
+}
+
 /// Near-black green fruit (50, 65, 35: hue 90, value 0.25) among lighter leaves: the fruit's hue
 /// is foliage green, and only the few points whose noisy hue strays out of the band passed the
 /// colour rule (28 counted of 50 on such a scene of the matrix). Their value parts them from the

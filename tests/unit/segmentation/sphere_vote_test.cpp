@@ -355,6 +355,25 @@ TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {
     }
 }
 
+TEST(SphereVote, OneClusterHoldingMostPointsDoesNotSetTheFirstSize) {
+    // As a tree's wood or the ground in one DBSCAN cluster beside fruit cut into pieces: a flat
+    // strip 12 x 1000 spacings (12000 points, its RMS size 289) holds more points than the 7
+    // fruit of radius 10 (8796). Counted over points, the first size was the strip's, and the
+    // normals fitted at half of it saw no fruit.
+    Scene s = hollow(10);
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        s.label[i] = 100 + static_cast<std::uint32_t>(i / 12);  // pieces of 12 points
+    }
+    for (int x = 0; x < 1000; ++x) {
+        for (int y = 0; y < 12; ++y) {
+            s.add({x - 500.0, y - 40.0, -30.0}, 0, 1);
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.fragment_points = 40});
+    EXPECT_NEAR(r.fruit_radius, 10, 1);
+    EXPECT_EQ(r.peaks, 7u);
+}
+
 TEST(SphereVote, SlicesThatDbscanCutApartShareTheirFruitsNormals) {
     // As DBSCAN leaves scan lines, or the sparse parts of an SfM fruit, when eps is under their
     // gaps: every slab 3 spacings wide a cluster of its own. A normal is the surface's, fitted to

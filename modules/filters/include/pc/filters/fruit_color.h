@@ -50,6 +50,10 @@ struct FruitColorChoice {
     /// be fruit (10 % or more of the saturated points outside foliage hue: the groups are tried
     /// where those are bark, not fruit)
     bool rule_first = false;
+    /// The points `rule` keeps in two groups (of hue, saturation or value): tried, each alone,
+    /// where the rule's fruit centres claim too few of its points (bark or ground kept with
+    /// the fruit)
+    std::vector<ColourClass> rule_classes;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -64,7 +68,9 @@ struct FruitColorChoice {
 ///    and when the green points form two groups, of hue or of value (the further apart), offer
 ///    the two as `classes`; with more points outside foliage hue (dark green fruit stray out of
 ///    it, brown bark), the same, and the rule competes (`rule_competes`; from 10 % it is tried
-///    first, `rule_first`).
+///    first, `rule_first`); and when the points the rule keeps form two groups of hue,
+///    saturation or value (fruit beside bark or ground: looser, 3 spreads apart), offer them as
+///    `rule_classes`.
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at
