@@ -286,32 +286,37 @@ TEST(Chain, GreenFruitAmongLeavesOfAnotherGreenAreToldApartByShape) {
     }
 }
 
+/// 40 apples of `fruit_rgb` in a small canopy beside a tree of five branches of brown bark.
+scenes::SceneParams beside_bark(const std::array<std::uint8_t, 3>& fruit_rgb) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 40;
+    sp.canopy = {0.5, 0.5, 0.4};
+    sp.fruit_rgb = fruit_rgb;
+    sp.branches = 5;
+    sp.wood_rgb = {100, 75, 50};
+    return sp;
+}
+
+/// The default chain counts the fruit present within 10 %, with the colour group whose points
+/// fruit centres claim.
+void expect_found_by_shape(const scenes::SceneParams& sp, const scenes::RenderParams& rp) {
+    const scenes::Rendered r = scenes::render(scenes::make_scene(sp), rp);
+    const auto present = static_cast<double>(
+        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
+    EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
+                0.1 * present);
+    EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"), std::string::npos)
+        << c.steps.front().rule;
+}
+
 /// Green fruit among leaves of another green, beside a tree of brown bark (a natural-colour
 /// export of the whole tree): the bark is the only colour outside foliage green, so the "not
 /// foliage" rule kept the wood alone (1-2 counted of 40); the green groups are tried when the
 /// rule's centres claim too few of its points (the wood counted alone: no ball filled).
 TEST(Chain, GreenFruitBesideBrownBarkAreFoundByShape) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {125, 175, 60};
-    sp.branches = 5;
-    sp.wood_rgb = {100, 75, 50};
-    for (std::uint64_t seed : {1}) {
-        sp.seed = seed;
-        const scenes::Rendered r = scenes::render(
-            scenes::make_scene(sp),
-            {.mode = scenes::Mode::kSurface, .voxel = 0.005, .leaf_leak = 0.3, .seed = seed});
-        const auto present = static_cast<double>(std::count_if(
-            r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
-        const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
-        EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
-                    0.1 * present)
-            << "seed " << seed;
-        EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"),
-                  std::string::npos)
-            << c.steps.front().rule;
-    }
+    expect_found_by_shape(beside_bark({125, 175, 60}),
+                          {.mode = scenes::Mode::kSurface, .voxel = 0.005, .leaf_leak = 0.3});
 }
 
 /// Dark red fruit beside brown bark, sampled as structure from motion: the trunk and branches,
@@ -321,22 +326,9 @@ TEST(Chain, GreenFruitBesideBrownBarkAreFoundByShape) {
 /// groups of saturation; counted alone, the fruit's is claimed by fruit centres and the bark's
 /// is not.
 TEST(Chain, RedFruitBesideBrownBarkAreTheRulesGroupThatCentresClaim) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {100, 20, 25};
-    sp.branches = 5;
+    scenes::SceneParams sp = beside_bark({100, 20, 25});
     sp.trunk_radius = 0.06;
-    sp.wood_rgb = {100, 75, 50};
-    const scenes::Rendered r = scenes::render(
-        scenes::make_scene(sp), {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1});
-    const auto present = static_cast<double>(
-        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
-    const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
-    EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
-                0.1 * present);
-    EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"), std::string::npos)
-        << c.steps.front().rule;
+    expect_found_by_shape(sp, {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1});
 }
 
 /// Near-black green fruit (50, 65, 35: hue 90, value 0.25) among lighter leaves: the fruit's hue
