@@ -204,15 +204,23 @@ SHAPE_PARTS = [
 # 'wood' (1841-1940) is a tune part: the families and colours seen so far with a tree of bark
 # (BARK above); 'held-out-17' (1941-2040) adds quince-like fruit (38 mm, aspect 1.2, single or in
 # pairs) of russet (a bark-like brown, lighter: russet pears and apples), scored once when the
-# method for wood is final.
+# method for wood is final (session 31). 'held-out-18' (2041-2140, session 31, before any method
+# for it) adds pomegranate-like fruit (45 mm, oblate aspect 0.9, single or in pairs) and a light
+# apple green (140,185,80: hue 86, in the leaves' band, lighter than them), beside bark: the
+# condition the wood method left (green fruit beside bark); score it once, at its end.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
      {'quince': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 2 '
                         '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
      {'russet': (165, 115, 65)}, set()),
+    ('held-out-18', 2045,
+     {'pomegranate': (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 2 '
+                             '--touch-gap 0.002 --fruit-count 50 --canopy 0.9,0.9,0.7')},
+     {'apple-green': (140, 185, 80)}, set()),
 ]
 ASPECTS['quince'] = 1.2
+ASPECTS['pomegranate'] = 0.9
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
