@@ -323,6 +323,9 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     const std::string head =
         "auto: natural colours (" + percent(saturated, seen) + " saturated" + floor + ")";
     out.reason = head + ": saturated and not foliage green (hue 170..70 deg)";
+    out.greens = ColourClass{hue_rule(kFoliage, s), head + ": saturated and foliage green (hue " +
+                                                        format_number(kFoliage.lo) + ".." +
+                                                        format_number(kFoliage.hi) + " deg)"};
     out.rule_classes = rule_groups(sample, s);
     for (ColourClass& k : out.rule_classes) {
         k.reason = out.reason + ", " + k.reason;

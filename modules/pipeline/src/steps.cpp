@@ -421,8 +421,23 @@ constexpr double kDoubtfulRule = 0.6;
 /// whose hues straddle it) about a third.
 constexpr double kBarkClaims = 0.25;
 
+/// A run whose parts fill under this share of a ball of its radius in a solid cloud claims
+/// nothing here: the tree's wood counted alone (a few "fruit" the size of the tree) filled
+/// 0.002-0.11; fruit surfaces at 3-5 spacings read as solid 0.26-0.31 (at kTooFewForABall, 0.36,
+/// the rule's fruit lost to the green points: 198 -> 2 of 200 grapes).
+constexpr double kNoBall = 0.15;
+/// The green points are kept instead of the rule where their centres claim at least this much
+/// more of their points.
+constexpr double kClaimsMore = 0.1;
+constexpr const char* kBarkKept =
+    "the colour rule's points look like bark, not fruit (its fruit centres claim few of them): "
+    "the green points were counted instead (green fruit among leaves); check the count, or give "
+    "--fruit-color";
+
 /// run_chain() from the colour step on when the colours offer two classes (`c.classes`) or the
-/// rule's points two groups (`c.rule_classes`).
+/// rule's points two groups (`c.rule_classes`); not for every natural-colour cloud, as running
+/// the rule on a copy of the input held for the others costs the input's size again (a cloud of
+/// 1M points peaked at 4.3 times its size, over the 3 of Memory.FruitcountOnOneMillionPoints).
 ChainResult by_shape(io::Blob in,
                      const ChainParams& p,
                      filters::FruitColorChoice c,
@@ -486,9 +501,8 @@ ChainResult by_shape(io::Blob in,
     // the size of the tree, 1-10 % filled).
     const auto claims = [](const ChainResult& run) {
         const auto fill = step_value(run, "recursive_split", "ball_fill");
-        return fill && *fill < kTooFewForABall
-                   ? 0.0
-                   : step_value(run, "recursive_split", "claimed").value_or(0);
+        return fill && *fill < kNoBall ? 0.0
+                                       : step_value(run, "recursive_split", "claimed").value_or(0);
     };
     const auto share = [](double x) { return format_number(std::round(100 * x)) + " %"; };
     const auto done = [&](ChainResult out, const std::string& rule) {
@@ -526,6 +540,18 @@ ChainResult by_shape(io::Blob in,
                             ", the group whose fruit centres claim its points (" + share(g[b]) +
                             "; " + share(g[1 - b]) + " of the other's, " + share(rule_claimed) +
                             " of the rule's)");
+        }
+    }
+    // Green fruit beside bark: the rule kept the bark (its centres claim few of its points) and
+    // the greens form no two groups: the green points, where their centres claim more.
+    if (c.greens && c.classes.size() != 2 && rule_claimed < kFewClaimed) {
+        rest.color = c.greens->rule;
+        ChainResult green = run_chain(in, rest);
+        if (const double g = claims(green); g > rule_claimed + kClaimsMore) {
+            green.warnings.insert(green.warnings.begin(), kBarkKept);
+            return done(std::move(green), c.greens->reason + " (their fruit centres claim " +
+                                              share(g) + " of their points, " +
+                                              share(rule_claimed) + " of the rule's)");
         }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kFewClaimed)) {

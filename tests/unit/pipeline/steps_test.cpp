@@ -297,17 +297,18 @@ scenes::SceneParams beside_bark(const std::array<std::uint8_t, 3>& fruit_rgb) {
     return sp;
 }
 
-/// The default chain counts the fruit present within 10 %, with the colour group whose points
-/// fruit centres claim.
-void expect_found_by_shape(const scenes::SceneParams& sp, const scenes::RenderParams& rp) {
+/// The default chain counts the fruit present within 10 %, with the colour rule whose text has
+/// `chosen` (by default: the group whose points fruit centres claim).
+void expect_found_by_shape(const scenes::SceneParams& sp,
+                           const scenes::RenderParams& rp,
+                           const std::string& chosen = "the group whose fruit centres claim") {
     const scenes::Rendered r = scenes::render(scenes::make_scene(sp), rp);
     const auto present = static_cast<double>(
         std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
     const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
     EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
                 0.1 * present);
-    EXPECT_NE(c.steps.front().rule.find("the group whose fruit centres claim"), std::string::npos)
-        << c.steps.front().rule;
+    EXPECT_NE(c.steps.front().rule.find(chosen), std::string::npos) << c.steps.front().rule;
 }
 
 /// Green fruit among leaves of another green, beside a tree of brown bark (a natural-colour
@@ -329,6 +330,16 @@ TEST(Chain, RedFruitBesideBrownBarkAreTheRulesGroupThatCentresClaim) {
     scenes::SceneParams sp = beside_bark({100, 20, 25});
     sp.trunk_radius = 0.06;
     expect_found_by_shape(sp, {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1});
+}
+
+/// Olive-green fruit (90, 120, 55: hue 88) among leaves beside brown bark: the greens form no
+/// two groups, and the "not foliage" rule kept the bark alone (here 1 counted of 40 before; 2-3
+/// of 90-200 on such scenes of the matrix). Where the rule's centres claim few of its points,
+/// the green points are counted (the leaves are sheets the split drops), with a warning.
+TEST(Chain, GreenFruitBesideBarkWithoutGreenGroupsAreTheGreenPoints) {
+    expect_found_by_shape(beside_bark({90, 120, 55}),
+                          {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1},
+                          "saturated and foliage green");
 }
 
 /// Near-black green fruit (50, 65, 35: hue 90, value 0.25) among lighter leaves: the fruit's hue

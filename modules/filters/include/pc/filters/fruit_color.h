@@ -54,6 +54,10 @@ struct FruitColorChoice {
     /// where the rule's fruit centres claim too few of its points (bark or ground kept with
     /// the fruit)
     std::vector<ColourClass> rule_classes;
+    /// The saturated points of foliage hue: counted instead of `rule` where its centres claim
+    /// too few of its points and no group was kept (green fruit beside bark: the rule kept the
+    /// bark; the leaves are sheets the split drops)
+    std::optional<ColourClass> greens;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -70,7 +74,7 @@ struct FruitColorChoice {
 ///    it, brown bark), the same, and the rule competes (`rule_competes`; from 10 % it is tried
 ///    first, `rule_first`); and when the points the rule keeps form two groups of hue,
 ///    saturation or value (fruit beside bark or ground: looser, 3 spreads apart), offer them as
-///    `rule_classes`.
+///    `rule_classes`; the saturated points of foliage hue are `greens`.
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at
