@@ -121,10 +121,40 @@ ColorFilterParams hue_rule(Interval hue, double min_saturation) {
     return rule;
 }
 
-/// The points the "saturated and not foliage" rule keeps in two groups (fruit beside bark, ground
-/// or another fruit colour): Otsu's split of their hue (from 170 deg round through red to 70),
-/// saturation or value, whichever leaves the sides further apart; none under kSomeGroups.
-std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample, double s) {
+/// A colour axis a rule can be narrowed on.
+enum class Axis { kHue, kSaturation, kValue };
+
+/// `rule` narrowed on `axis` to each side of `at` within `whole` (for hue, round from
+/// whole.lo through `at` to whole.hi), each described as `head` + the side in words ("hue
+/// 170..20 deg") + `tail`.
+std::vector<ColourClass> two_sides(const ColorFilterParams& rule,
+                                   Axis axis,
+                                   Interval whole,
+                                   double at,
+                                   const std::string& head,
+                                   const std::string& tail) {
+    const char* name = axis == Axis::kHue          ? "hue "
+                       : axis == Axis::kSaturation ? "saturation "
+                                                   : "value ";
+    std::vector<ColourClass> out;
+    for (const Interval side : {Interval{whole.lo, at}, Interval{at, whole.hi}}) {
+        ColorFilterParams r = rule;
+        (axis == Axis::kHue          ? r.hue_deg
+         : axis == Axis::kSaturation ? r.saturation
+                                     : r.value) = side;
+        out.push_back({r, head + name + format_number(side.lo) + ".." + format_number(side.hi) +
+                              (axis == Axis::kHue ? " deg" : "") + tail});
+    }
+    return out;
+}
+
+/// The points `rule` ("saturated and not foliage") keeps in two groups (fruit beside bark,
+/// ground or another fruit colour): Otsu's split of their hue (from 170 deg round through red
+/// to 70), saturation or value, whichever leaves the sides further apart; none under
+/// kSomeGroups.
+std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample,
+                                     const ColorFilterParams& rule) {
+    const double s = rule.saturation->lo;
     std::vector<double> hues(260, 0.0), saturations(100, 0.0), values(100, 0.0);
     for (const Hsv& c : sample) {
         if (c.s >= s && c.v >= kBlack && c.h >= 0 && !is_foliage(c)) {
@@ -138,35 +168,18 @@ std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample, double s) {
                  by_value = otsu(values, 0, 0.01);
     const double best =
         std::max({by_hue.separation, by_saturation.separation, by_value.separation});
-    std::vector<ColourClass> out;
     if (best < kSomeGroups) {
-        return out;
+        return {};
     }
-    const std::string apart = " (their means " + format_rounded(best) + " spreads apart)";
-    const Interval not_foliage{kFoliage.hi, kFoliage.lo};
+    const std::string apart =
+        " of two groups (their means " + format_rounded(best) + " spreads apart)";
     if (best == by_hue.separation) {
-        const double at = std::fmod(kFoliage.hi + by_hue.at, 360);
-        for (const Interval hue : {Interval{kFoliage.hi, at}, Interval{at, kFoliage.lo}}) {
-            out.push_back({hue_rule(hue, s), "hue " + format_number(hue.lo) + ".." +
-                                                 format_number(hue.hi) + " deg of two groups" +
-                                                 apart});
-        }
-    } else if (best == by_saturation.separation) {
-        for (const Interval sat : {Interval{s, by_saturation.at}, Interval{by_saturation.at, 1}}) {
-            ColorFilterParams rule = hue_rule(not_foliage, s);
-            rule.saturation = sat;
-            out.push_back({rule, "saturation " + format_number(sat.lo) + ".." +
-                                     format_number(sat.hi) + " of two groups" + apart});
-        }
-    } else {
-        for (const Interval value : {Interval{kBlack, by_value.at}, Interval{by_value.at, 1}}) {
-            ColorFilterParams rule = hue_rule(not_foliage, s);
-            rule.value = value;
-            out.push_back({rule, "value " + format_number(value.lo) + ".." +
-                                     format_number(value.hi) + " of two groups" + apart});
-        }
+        return two_sides(rule, Axis::kHue, *rule.hue_deg, std::fmod(kFoliage.hi + by_hue.at, 360),
+                         "", apart);
     }
-    return out;
+    return best == by_saturation.separation
+               ? two_sides(rule, Axis::kSaturation, {s, 1}, by_saturation.at, "", apart)
+               : two_sides(rule, Axis::kValue, {kBlack, 1}, by_value.at, "", apart);
 }
 
 std::string percent(std::size_t part, std::size_t whole) {
@@ -288,21 +301,11 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
                                              : "values split at " + format_number(g.at)) +
                                    " (their means " + format_rounded(g.separation) +
                                    " spreads apart)";
-        if (hue_wins) {
-            const double lo = std::fmod(g.at + 180, 360);
-            for (const Interval hue : {Interval{lo, g.at}, Interval{g.at, lo}}) {
-                out.classes.push_back({hue_rule(hue, s), groups + ": hue " + format_number(hue.lo) +
-                                                             ".." + format_number(hue.hi) +
-                                                             " deg"});
-            }
-        } else {
-            for (const Interval value : {Interval{kBlack, g.at}, Interval{g.at, 1}}) {
-                ColorFilterParams rule = saturated_rule(s);
-                rule.value = value;
-                out.classes.push_back({rule, groups + ": value " + format_number(value.lo) + ".." +
-                                                 format_number(value.hi)});
-            }
-        }
+        const double lo = std::fmod(g.at + 180, 360);
+        out.classes =
+            hue_wins
+                ? two_sides(saturated_rule(s), Axis::kHue, {lo, lo}, g.at, groups + ": ", "")
+                : two_sides(saturated_rule(s), Axis::kValue, {kBlack, 1}, g.at, groups + ": ", "");
         return groups;
     };
     const std::size_t fruitish = saturated - foliage;
@@ -326,7 +329,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     out.greens = ColourClass{hue_rule(kFoliage, s), head + ": saturated and foliage green (hue " +
                                                         format_number(kFoliage.lo) + ".." +
                                                         format_number(kFoliage.hi) + " deg)"};
-    out.rule_classes = rule_groups(sample, s);
+    out.rule_classes = rule_groups(sample, *out.rule);
     for (ColourClass& k : out.rule_classes) {
         k.reason = out.reason + ", " + k.reason;
     }
