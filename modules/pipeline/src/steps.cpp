@@ -64,20 +64,30 @@ Step finish_step(
     return s;
 }
 
-}  // namespace
-
-Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
-    p.validate();
-    // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
-    const auto kept = in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
-    std::string note = kept_note("color_filter", kept.size(), in.size());
-    const std::size_t n = in.size();
-    io::keep_points(in, kept);
-    return finish_step(std::move(in), std::move(note), "color_filter", n,
+/// The colour step's record: rule `p` kept `kept` of `in` points.
+Step colour_step(io::Blob kept, std::size_t in, const filters::ColorFilterParams& p) {
+    std::string note = kept_note("color_filter", kept.size(), in);
+    return finish_step(std::move(kept), std::move(note), "color_filter", in,
                        "the colour rule (" + describe(p) +
                            ") removed nearly every point; is the fruit another colour? try "
                            "--fruit-color (auto, mask, red, orange, yellow, green, purple, any) or "
                            "--no-color");
+}
+
+/// The points of `in` that rule `p` keeps.
+Indices colour_kept(const io::Blob& in, const filters::ColorFilterParams& p) {
+    p.validate();
+    // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
+    return in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
+}
+
+}  // namespace
+
+Step apply_color_filter(io::Blob in, const filters::ColorFilterParams& p) {
+    const Indices kept = colour_kept(in, p);
+    const std::size_t n = in.size();
+    io::keep_points(in, kept);
+    return colour_step(std::move(in), n, p);
 }
 
 namespace {
@@ -434,56 +444,72 @@ constexpr const char* kBarkKept =
     "the green points were counted instead (green fruit among leaves); check the count, or give "
     "--fruit-color";
 
-/// run_chain() from the colour step on when the colours offer two classes (`c.classes`) or the
-/// rule's points two groups (`c.rule_classes`); not for every natural-colour cloud, as running
-/// the rule on a copy of the input held for the others costs the input's size again (a cloud of
-/// 1M points peaked at 4.3 times its size, over the 3 of Memory.FruitcountOnOneMillionPoints).
+using Progress = std::function<void(const std::string&)>;
+
+/// run_chain() from the colour step on when the colours are natural (a rule, and other colour
+/// classes to try: the rule's own groups, two groups of greens, the green points) and the split
+/// is the spheres rule: the candidates counted alone, the one whose fruit centres claim its
+/// points kept.
 ChainResult by_shape(io::Blob in,
                      const ChainParams& p,
                      filters::FruitColorChoice c,
-                     const std::function<void(const std::string&)>& progress);
+                     const Progress& progress);
 
-}  // namespace
-
-ChainResult run_chain(io::Blob in,
-                      const ChainParams& p,
-                      const std::function<void(const std::string&)>& progress) {
-    ChainResult out;
-    io::Blob cur = std::move(in);
-    const auto take = [&](Step s) {
-        cur = std::move(s.blob);
-        out.steps.push_back(s.record);
-        out.warnings.insert(out.warnings.end(), s.warnings.begin(), s.warnings.end());
-        if (progress) {
-            progress(s.note);
-        }
-        out.notes.push_back(std::move(s.note));
-    };
-    if (p.color) {
-        take(apply_color_filter(std::move(cur), *p.color));
-    } else if (p.fruit_color) {
-        filters::FruitColorChoice c = choose_fruit_color(cur, *p.fruit_color);
-        if ((c.classes.size() == 2 || !c.rule_classes.empty()) && p.split &&
-            p.split->rule == segmentation::SplitRule::kSpheres) {
-            return by_shape(std::move(cur), p, std::move(c), progress);
-        }
-        take(apply_choice(std::move(cur), std::move(c)));
+/// Appends step `s`'s record, note and warnings to `out`; returns its points.
+io::Blob take(ChainResult& out, Step s, const Progress& progress) {
+    out.steps.push_back(s.record);
+    out.warnings.insert(out.warnings.end(), s.warnings.begin(), s.warnings.end());
+    if (progress) {
+        progress(s.note);
     }
+    out.notes.push_back(std::move(s.note));
+    return std::move(s.blob);
+}
+
+/// The chain from the crop step on, after the steps `out` holds, on `cur`.
+ChainResult rest_of_chain(ChainResult out,
+                          io::Blob cur,
+                          const ChainParams& p,
+                          const Progress& progress) {
     if (p.crop) {
-        take(apply_crop(std::move(cur), *p.crop));
+        cur = take(out, apply_crop(std::move(cur), *p.crop), progress);
     }
     if (p.voxel) {
-        take(apply_voxel(std::move(cur), *p.voxel));
+        cur = take(out, apply_voxel(std::move(cur), *p.voxel), progress);
     }
     if (p.knn) {
-        take(apply_knn_outlier(std::move(cur), *p.knn));
+        cur = take(out, apply_knn_outlier(std::move(cur), *p.knn), progress);
     }
-    take(apply_dbscan(std::move(cur), p.dbscan, p.eps));
+    cur = take(out, apply_dbscan(std::move(cur), p.dbscan, p.eps), progress);
     if (p.split) {
-        take(apply_recursive_split(std::move(cur), *p.split));
+        cur = take(out, apply_recursive_split(std::move(cur), *p.split), progress);
     }
     out.labelled = std::move(cur);
     return out;
+}
+
+/// The chain after its colour step.
+ChainResult chain_after(Step colour, const ChainParams& p, const Progress& progress) {
+    ChainResult out;
+    io::Blob cur = take(out, std::move(colour), progress);
+    return rest_of_chain(std::move(out), std::move(cur), p, progress);
+}
+
+}  // namespace
+
+ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
+    if (p.color) {
+        return chain_after(apply_color_filter(std::move(in), *p.color), p, progress);
+    }
+    if (p.fruit_color) {
+        filters::FruitColorChoice c = choose_fruit_color(in, *p.fruit_color);
+        if ((c.classes.size() == 2 || c.greens) && p.split &&
+            p.split->rule == segmentation::SplitRule::kSpheres) {
+            return by_shape(std::move(in), p, std::move(c), progress);
+        }
+        return chain_after(apply_choice(std::move(in), std::move(c)), p, progress);
+    }
+    return rest_of_chain({}, std::move(in), p, progress);
 }
 
 namespace {
@@ -491,7 +517,7 @@ namespace {
 ChainResult by_shape(io::Blob in,
                      const ChainParams& p,
                      filters::FruitColorChoice c,
-                     const std::function<void(const std::string&)>& progress) {
+                     const Progress& progress) {
     ChainParams rest = p;
     rest.fruit_color.reset();
     std::vector<ChainResult> runs;
@@ -515,11 +541,20 @@ ChainResult by_shape(io::Blob in,
         }
         return out;
     };
+    // Where the colours offer no groups, the rule and the green points are the only candidates:
+    // the green points are set aside (a copy of them alone) and the rule counted on the input
+    // itself, not on a copy of it (a cloud of 1M points would peak at over 4 times its size).
+    const bool offered = c.classes.size() == 2 || !c.rule_classes.empty();
+    std::optional<Step> greens;
+    if (!offered && c.greens) {
+        greens = colour_step(io::copy_points(in, colour_kept(in, c.greens->rule)), in.size(),
+                             c.greens->rule);
+    }
     std::optional<ChainResult> by_rule;
     double rule_claimed = 0;
-    if (c.rule_competes || !c.rule_classes.empty()) {
+    if (c.rule_competes || !offered || !c.rule_classes.empty()) {
         rest.color = c.rule;
-        by_rule = run_chain(in, rest);
+        by_rule = offered ? run_chain(in, rest) : run_chain(std::move(in), rest);
         rule_claimed = claims(*by_rule);
     }
     // Bark or ground kept with the fruit: the rule's own groups, each counted alone, where its
@@ -546,7 +581,8 @@ ChainResult by_shape(io::Blob in,
     // the greens form no two groups: the green points, where their centres claim more.
     if (c.greens && c.classes.size() != 2 && rule_claimed < kFewClaimed) {
         rest.color = c.greens->rule;
-        ChainResult green = run_chain(in, rest);
+        ChainResult green =
+            greens ? chain_after(std::move(*greens), rest, {}) : run_chain(in, rest);
         if (const double g = claims(green); g > rule_claimed + kClaimsMore) {
             green.warnings.insert(green.warnings.begin(), kBarkKept);
             return done(std::move(green), c.greens->reason + " (their fruit centres claim " +

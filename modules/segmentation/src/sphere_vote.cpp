@@ -316,7 +316,10 @@ struct Peak {
 /// their density.
 class Votes {
 public:
-    Votes(double cell, const V3& origin) : cell_(cell), origin_(origin) {}
+    /// Votes in cells `cell` wide from `origin`, room made for `expected` of them.
+    Votes(double cell, const V3& origin, std::size_t expected) : cell_(cell), origin_(origin) {
+        entries_.reserve(expected);
+    }
 
     void add(const V3& at, float w, std::uint32_t voter) {
         const std::array<std::int64_t, 3> c{coord(at.x(), 0), coord(at.y(), 1), coord(at.z(), 2)};
@@ -1030,7 +1033,9 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // Each point votes for the centres at p ± R n; the peaks are the fruit.
     const auto vote = [&](double radius) {
         const Normals nm = normals(surface, params.normal_scale * radius, s);
-        Votes votes(params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius));
+        Votes votes(params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
+                    2 * static_cast<std::size_t>(std::count_if(nm.w.begin(), nm.w.end(),
+                                                               [](float w) { return w > 0.2f; })));
         for (std::uint32_t i = 0; i < s.view.size; ++i) {
             if (nm.w[i] > 0.2f) {
                 const V3 p = vec(s.view[i]);

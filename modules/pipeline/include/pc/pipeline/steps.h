@@ -71,15 +71,17 @@ struct ChainResult {
     std::vector<StepRecord> steps;      ///< one per step, in order
     std::vector<std::string> warnings;  ///< the steps' warnings, in order
 };
-/// `in` is taken by value: pass a temporary (or std::move) and it is not copied (but for green
-/// fruit among leaves, below). `progress`, when set, receives each step's note as soon as the
-/// step is done (pc_fruitcount -v).
-/// Green fruit among leaves: when the colour step chosen from the cloud offers two colour
-/// classes (filters::FruitColorChoice::classes) and the split is the spheres rule, the chain
-/// runs on each class alone and keeps the run of the class whose fruit centres claimed at least
-/// half of its clustered points while the other's claimed under half that share (leaves are
-/// sheets, which few centres claim), and, when the rule competes, more than the rule's run
-/// claimed of its own; else the run of the chosen rule.
+/// `in` is taken by value: pass a temporary (or std::move) and it is not copied (but where the
+/// colours offer groups, below). `progress`, when set, receives each step's note as soon as the
+/// step is done (pc_fruitcount -v; by the shape test below, once the run is chosen).
+/// Natural colours under the spheres split: the colour rule chosen from the cloud
+/// (filters::choose_fruit_color) is checked by shape against the other classes the colours
+/// offer: the rule's own two groups (bark beside the fruit), two groups of greens (green fruit
+/// among leaves) and the green points (green fruit beside bark). Each is counted alone where the
+/// rule's fruit centres claim too few of its points (two groups of greens: also where few points
+/// lie outside foliage hue), and the run of the class whose centres claim its points is kept
+/// (docs/robustness.md gives the shares). Where no group is offered only the green points are
+/// set aside (a copy of them), and the rule runs on `in` itself.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
