@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -248,6 +249,31 @@ TEST(Chain, DenseCountHoldsUnderScaleRotationAndHalfThePoints) {
         EXPECT_NEAR(static_cast<double>(dense_count(std::move(half))), static_cast<double>(count),
                     std::max(1.0, slack * static_cast<double>(count)))
             << scenes::mode_name(mode) << " every second point";
+    }
+}
+
+/// The split's record says how full its parts are: a surface cloud's median fruit holds about a
+/// sphere's surface of its radius (4π (R/s)² points: `shell_fill` near 1, not under the 0.03 at
+/// which a colour class's run claims nothing), a solid cloud's a ball (`ball_fill`).
+TEST(Chain, TheSplitRecordsHowFullItsFruitAre) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 20;
+    sp.canopy = {0.4, 0.4, 0.3};
+    sp.leaf_density = 0;
+    const scenes::Scene scene = scenes::make_scene(sp);
+    for (scenes::Mode mode : {scenes::Mode::kSurface, scenes::Mode::kVolume}) {
+        const ChainResult c =
+            run_chain(scenes::to_blob(scenes::render(scene, {.mode = mode, .voxel = 0.006})),
+                      preset("dense"));
+        const StepRecord& split = c.steps.back();
+        ASSERT_EQ(split.name, "recursive_split");
+        std::map<std::string, double> v(split.values.begin(), split.values.end());
+        const bool solid = mode == scenes::Mode::kVolume;
+        EXPECT_EQ(v.count("ball_fill"), solid ? 1u : 0u) << scenes::mode_name(mode);
+        EXPECT_EQ(v.count("shell_fill"), solid ? 0u : 1u) << scenes::mode_name(mode);
+        const double fill = solid ? v["ball_fill"] : v["shell_fill"];
+        EXPECT_GT(fill, solid ? 0.15 : 0.1) << scenes::mode_name(mode);
+        EXPECT_LT(fill, solid ? 5.0 : 2.0) << scenes::mode_name(mode);
     }
 }
 

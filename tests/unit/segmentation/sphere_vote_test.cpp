@@ -374,6 +374,26 @@ TEST(SphereVote, OneClusterHoldingMostPointsDoesNotSetTheFirstSize) {
     EXPECT_EQ(r.peaks, 7u);
 }
 
+TEST(SphereVote, ABranchOfTheFruitsRadiusGetsNoCentres) {
+    // A branch (a tube of the fruit's radius 10, 200 long, one spacing between points) beside the
+    // 7 fruit, in a DBSCAN cluster of its own: its normals meet on its axis, where the votes make
+    // a row of peaks; its surface is curved one way only, the fruit's two ways.
+    Scene s = hollow(10);
+    const std::size_t fruit_points = s.cloud.size();
+    for (int z = 0; z < 200; ++z) {
+        for (int k = 0; k < 63; ++k) {
+            const double a = 2 * 3.141592653589793 * k / 63;
+            s.add({150 + 10 * std::cos(a), 10 * std::sin(a), z - 100.0}, 0, 50);
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_NEAR(r.fruit_radius, 10, 1);
+    EXPECT_EQ(r.peaks, 7u);
+    for (std::size_t i = fruit_points; i < s.cloud.size(); ++i) {
+        ASSERT_EQ(r.labels[i], r.labels[fruit_points]) << "the branch is cut at point " << i;
+    }
+}
+
 TEST(SphereVote, SlicesThatDbscanCutApartShareTheirFruitsNormals) {
     // As DBSCAN leaves scan lines, or the sparse parts of an SfM fruit, when eps is under their
     // gaps: every slab 3 spacings wide a cluster of its own. A normal is the surface's, fitted to
@@ -580,6 +600,8 @@ TEST(SphereVote, NoiseStaysNoiseAndBadInputIsRefused) {
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.vote_cell = 0}),
                  InvalidArgument);
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.prior_low = 0}),
+                 InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.min_two_way = 0.5}),
                  InvalidArgument);
 }
 

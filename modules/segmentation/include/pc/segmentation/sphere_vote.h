@@ -23,6 +23,9 @@ struct SphereVoteParams {
     /// ... and voters from more than one side: the length of their mean direction to it at most
     /// this (1: all parallel, a flat patch such as a piece of leaf)
     double max_alignment = 0.93;
+    /// ... and a surface within 2R curved two ways: the smallest eigenvalue of its normals'
+    /// second moment at least this (about 0 on a branch, curved one way; fruit 0.008-0.27)
+    double min_two_way = 0.02;
     double reach = 1.5;  ///< × a peak's radius: points farther from every peak keep their cluster
     /// ... unless that rest is a sheet (a leaf, the ground): its smallest standard deviation under
     /// this × its middle one and not curved like a bowl (a quadric over its plane explains under
@@ -96,7 +99,10 @@ struct SphereVoteResult {
 ///  3. Votes: each point votes for the centres at p ± R·n (the sign of a normal is unknown; the
 ///     wrong side scatters over a sphere of 2R). Peaks of the vote density (cells of cell × R,
 ///     local maxima of 3×3×3 sums, refined by mean shift within peak_radius × R), strongest first,
-///     at least peak_separation × R apart and with min_support × the median support, are fruit.
+///     at least peak_separation × R apart and with min_support × the median support, are fruit,
+///     unless their voters lie on one side (max_alignment: a piece of leaf) or the surface within
+///     2R of the peak is curved one way only (min_two_way: a branch, whose normals meet on its
+///     axis).
 ///  4. Every clustered point goes to the peak nearest relative to the peak's radius (the median
 ///     distance of its voters), when within `reach` of it; points far from every peak keep their
 ///     DBSCAN cluster as one more part, or are dropped when that part is a flat `sheet`. Pieces
