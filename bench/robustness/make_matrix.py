@@ -207,7 +207,10 @@ SHAPE_PARTS = [
 # method for wood is final (session 31). 'held-out-18' (2041-2140, session 31, before any method
 # for it) adds pomegranate-like fruit (45 mm, oblate aspect 0.9, single or in pairs) and a light
 # apple green (140,185,80: hue 86, in the leaves' band, lighter than them), beside bark: the
-# condition the wood method left (green fruit beside bark); score it once, at its end.
+# condition the wood method left (green fruit beside bark); score it once, at its end (scored in
+# session 32). 'held-out-19' (2141-2240, session 32, before any method for it) adds loquat-like
+# fruit (20 mm, aspect 1.3, in bunches of 3-8 touching: locally near-cylindrical, as the branch
+# test of session 32 reads branches) of ochre (185,135,45: a yellow-brown near the bark's hues).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -218,9 +221,15 @@ WOOD_PARTS = [
      {'pomegranate': (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 2 '
                              '--touch-gap 0.002 --fruit-count 50 --canopy 0.9,0.9,0.7')},
      {'apple-green': (140, 185, 80)}, set()),
+    ('held-out-19', 2046,
+     {'loquat': (0.020, '--species plum --fruit-radius 0.020 --bunch-min 3 --bunch-max 8 '
+                        '--touch-gap 0.001 --overlap 0.05 --fruit-count 120 '
+                        '--canopy 0.6,0.6,0.5')},
+     {'ochre': (185, 135, 45)}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
+ASPECTS['loquat'] = 1.3
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
