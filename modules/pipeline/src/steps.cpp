@@ -531,8 +531,6 @@ ChainResult by_shape(io::Blob in,
                      const Progress& progress) {
     ChainParams rest = p;
     rest.fruit_color.reset();
-    std::vector<ChainResult> runs;
-    std::vector<double> claimed;
     // The share its fruit centres claimed; none when they are no fruit: parts far from filling
     // a ball (solid clouds) or a sphere's surface (surface clouds) of the fruit radius (the
     // tree's wood counted alone: a few "fruit" the size of the tree).
@@ -542,6 +540,16 @@ ChainResult by_shape(io::Blob in,
         return (ball && *ball < kNoBall) || (shell && *shell < kNoShell)
                    ? 0.0
                    : step_value(run, "recursive_split", "claimed").value_or(0);
+    };
+    // Two colour classes, each counted alone on the input: the runs and their claims.
+    const auto each_alone = [&](const std::vector<filters::ColourClass>& two) {
+        std::pair<std::vector<ChainResult>, std::vector<double>> out;
+        for (const filters::ColourClass& k : two) {
+            rest.color = k.rule;
+            out.first.push_back(run_chain(in, rest));
+            out.second.push_back(claims(out.first.back()));
+        }
+        return out;
     };
     const auto share = [](double x) { return format_number(std::round(100 * x)) + " %"; };
     const auto done = [&](ChainResult out, const std::string& rule) {
@@ -574,13 +582,7 @@ ChainResult by_shape(io::Blob in,
     // centres claim few of its points; a group is the fruit where it is claimed as fruit are and
     // the other is claimed as bark is (kBarkClaims).
     if (!c.rule_classes.empty() && rule_claimed < kDoubtfulRule) {
-        std::vector<ChainResult> groups;
-        std::vector<double> g;
-        for (const filters::ColourClass& k : c.rule_classes) {
-            rest.color = k.rule;
-            groups.push_back(run_chain(in, rest));
-            g.push_back(claims(groups.back()));
-        }
+        auto [groups, g] = each_alone(c.rule_classes);
         const std::size_t b = g[1] > g[0] ? 1 : 0;
         if (g[b] >= kFruitClaims && g[1 - b] < kBarkClaims * g[b] && g[b] > rule_claimed) {
             return done(std::move(groups[b]),
@@ -609,11 +611,7 @@ ChainResult by_shape(io::Blob in,
         return done(std::move(out), c.reason + " (its fruit centres claim " + share(rule_claimed) +
                                         " of its points)");
     }
-    for (const filters::ColourClass& k : c.classes) {
-        rest.color = k.rule;
-        runs.push_back(run_chain(in, rest));
-        claimed.push_back(claims(runs.back()));
-    }
+    auto [runs, claimed] = each_alone(c.classes);
     const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
     const std::string of_rule =
         c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "";

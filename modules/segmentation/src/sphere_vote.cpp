@@ -312,6 +312,10 @@ struct Peak {
     double radius = 0;
 };
 
+/// A point votes where its normal's weight (1 − λ₁/λ₂) is above this: its surroundings are flat
+/// enough for a normal.
+constexpr float kVotes = 0.2f;
+
 /// A branch is curved one way, a fruit two ways: the normals of a branch's points all lie across
 /// its axis, in one plane, and their second moment has a smallest eigenvalue of about 0 (noise),
 /// where a fruit's, even an elongated one's, has its ends. Over 12 scenes of the matrix's
@@ -330,7 +334,7 @@ bool curved_one_way(
     Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
     double weight = 0;
     grid.for_each_within(point(centre), around, [&](std::uint32_t j, double) {
-        if (nm.w[j] > 0.2f) {
+        if (nm.w[j] > kVotes) {
             moment += nm.w[j] * nm.n[j] * nm.n[j].transpose();
             weight += nm.w[j];
         }
@@ -1070,10 +1074,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     const auto vote = [&](double radius) {
         const Normals nm = normals(surface, params.normal_scale * radius, s);
         Votes votes(params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
-                    2 * static_cast<std::size_t>(std::count_if(nm.w.begin(), nm.w.end(),
-                                                               [](float w) { return w > 0.2f; })));
+                    2 * static_cast<std::size_t>(std::count_if(
+                            nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
         for (std::uint32_t i = 0; i < s.view.size; ++i) {
-            if (nm.w[i] > 0.2f) {
+            if (nm.w[i] > kVotes) {
                 const V3 p = vec(s.view[i]);
                 votes.add(p + radius * nm.n[i], nm.w[i], i);
                 votes.add(p - radius * nm.n[i], nm.w[i], i);
