@@ -210,7 +210,10 @@ SHAPE_PARTS = [
 # condition the wood method left (green fruit beside bark); score it once, at its end (scored in
 # session 32). 'held-out-19' (2141-2240, session 32, before any method for it) adds loquat-like
 # fruit (20 mm, aspect 1.3, in bunches of 3-8 touching: locally near-cylindrical, as the branch
-# test of session 32 reads branches) of ochre (185,135,45: a yellow-brown near the bark's hues).
+# test of session 32 reads branches) of ochre (185,135,45: a yellow-brown near the bark's hues)
+# (scored in session 33). 'held-out-20' (2241-2340, session 33, before any method for it) adds
+# jujube-like fruit (13 mm, aspect 1.3, single or up to three) of mahogany (110,45,30: a dark
+# red-brown, between red fruit and the red-brown bark, where shading darkens both alike).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -226,10 +229,15 @@ WOOD_PARTS = [
                         '--touch-gap 0.001 --overlap 0.05 --fruit-count 120 '
                         '--canopy 0.6,0.6,0.5')},
      {'ochre': (185, 135, 45)}, set()),
+    ('held-out-20', 2047,
+     {'jujube': (0.013, '--species plum --fruit-radius 0.013 --bunch-min 1 --bunch-max 3 '
+                        '--touch-gap 0.001 --fruit-count 150 --canopy 0.5,0.5,0.4')},
+     {'mahogany': (110, 45, 30)}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
+ASPECTS['jujube'] = 1.3
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
