@@ -16,30 +16,10 @@ bool passes(const io::Rgb& c, const ColorFilterParams& p) {
     if (!(std::isfinite(r) && std::isfinite(g) && std::isfinite(b))) {
         return false;
     }
-    const Hsv x = hsv(c);
     if (p.min_mean && !((r + g + b) / 3.0 > *p.min_mean)) {
         return false;
     }
-    if (p.min_value && !(x.v > *p.min_value)) {
-        return false;
-    }
-    if (p.value && !in(x.v, *p.value)) {
-        return false;
-    }
-    if (p.saturation && !in(x.s, *p.saturation)) {
-        return false;
-    }
-    if (p.hue_deg) {
-        if (x.h < 0) {
-            return false;  // grey has no hue
-        }
-        const Interval& w = *p.hue_deg;
-        const bool hit = w.lo <= w.hi ? in(x.h, w) : (x.h >= w.lo || x.h <= w.hi);
-        if (!hit) {
-            return false;
-        }
-    }
-    return true;
+    return hsv_passes(hsv(c), p);
 }
 
 }  // namespace
@@ -56,6 +36,28 @@ Hsv hsv(const io::Rgb& c) {
         out.h = h < 0 ? h + 360.0 : h;
     }
     return out;
+}
+
+bool hsv_passes(const Hsv& x, const ColorFilterParams& p) {
+    if (p.min_value && !(x.v > *p.min_value)) {
+        return false;
+    }
+    if (p.value && !in(x.v, *p.value)) {
+        return false;
+    }
+    if (p.saturation && !in(x.s, *p.saturation)) {
+        return false;
+    }
+    if (p.hue_deg) {
+        if (x.h < 0) {
+            return false;  // grey has no hue
+        }
+        const Interval& w = *p.hue_deg;
+        if (!(w.lo <= w.hi ? in(x.h, w) : (x.h >= w.lo || x.h <= w.hi))) {
+            return false;
+        }
+    }
+    return true;
 }
 
 Interval parse_interval(const std::string& option, const std::string& text) {

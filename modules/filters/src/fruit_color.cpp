@@ -148,18 +148,25 @@ std::vector<ColourClass> two_sides(const ColorFilterParams& rule,
     return out;
 }
 
-/// The points `rule` ("saturated and not foliage") keeps in two groups (fruit beside bark,
-/// ground or another fruit colour): Otsu's split of their hue (from 170 deg round through red
-/// to 70), saturation or value, whichever leaves the sides further apart; none under
-/// kSomeGroups.
+/// The sample's colours `rule` keeps in two groups (fruit beside bark, ground or another fruit
+/// colour): Otsu's split of their hue (round the rule's hue band from its start, or the whole
+/// circle), saturation or value, whichever leaves the sides further apart, each side the rule
+/// narrowed on that axis; none under kSomeGroups. With `deeper`, each side's own two groups as
+/// well (`groups`: a side may hold the fruit beside shaded bark whose noisy hues reach the
+/// fruit's).
 std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample,
-                                     const ColorFilterParams& rule) {
-    const double s = rule.saturation->lo;
-    std::vector<double> hues(260, 0.0), saturations(100, 0.0), values(100, 0.0);
+                                     const ColorFilterParams& rule,
+                                     bool deeper) {
+    const Interval hue = rule.hue_deg.value_or(Interval{0, 360}),
+                   saturation = rule.saturation.value_or(Interval{0, 1}),
+                   value = rule.value.value_or(Interval{0, 1});
+    const double band = std::fmod(hue.hi - hue.lo + 360, 360);
+    std::vector<double> hues(static_cast<std::size_t>(band == 0 ? 360 : band), 0.0),
+        saturations(100, 0.0), values(100, 0.0);
     for (const Hsv& c : sample) {
-        if (c.s >= s && c.v >= kBlack && c.h >= 0 && !is_foliage(c)) {
-            ++hues[std::min<std::size_t>(
-                259, static_cast<std::size_t>(std::fmod(c.h - kFoliage.hi + 360, 360)))];
+        if (c.h >= 0 && hsv_passes(c, rule)) {
+            ++hues[std::min(hues.size() - 1,
+                            static_cast<std::size_t>(std::fmod(c.h - hue.lo + 360, 360)))];
             ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
             ++values[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.v))];
         }
@@ -173,13 +180,21 @@ std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample,
     }
     const std::string apart =
         " of two groups (their means " + format_rounded(best) + " spreads apart)";
-    if (best == by_hue.separation) {
-        return two_sides(rule, Axis::kHue, *rule.hue_deg, std::fmod(kFoliage.hi + by_hue.at, 360),
-                         "", apart);
+    std::vector<ColourClass> out =
+        best == by_hue.separation
+            ? two_sides(rule, Axis::kHue, hue, std::fmod(hue.lo + by_hue.at, 360), "", apart)
+        : best == by_saturation.separation
+            ? two_sides(rule, Axis::kSaturation, saturation, by_saturation.at, "", apart)
+            : two_sides(rule, Axis::kValue, value, by_value.at, "", apart);
+    if (deeper) {
+        for (ColourClass& side : out) {
+            side.groups = rule_groups(sample, side.rule, false);
+            for (ColourClass& g : side.groups) {
+                g.reason = side.reason + ", " + g.reason;
+            }
+        }
     }
-    return best == by_saturation.separation
-               ? two_sides(rule, Axis::kSaturation, {s, 1}, by_saturation.at, "", apart)
-               : two_sides(rule, Axis::kValue, {kBlack, 1}, by_value.at, "", apart);
+    return out;
 }
 
 std::string percent(std::size_t part, std::size_t whole) {
@@ -306,6 +321,12 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             hue_wins
                 ? two_sides(saturated_rule(s), Axis::kHue, {lo, lo}, g.at, groups + ": ", "")
                 : two_sides(saturated_rule(s), Axis::kValue, {kBlack, 1}, g.at, groups + ": ", "");
+        for (ColourClass& k : out.classes) {
+            k.groups = rule_groups(sample, k.rule, false);
+            for (ColourClass& sub : k.groups) {
+                sub.reason = k.reason + ", " + sub.reason;
+            }
+        }
         return groups;
     };
     const std::size_t fruitish = saturated - foliage;
@@ -329,9 +350,12 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     out.greens = ColourClass{hue_rule(kFoliage, s), head + ": saturated and foliage green (hue " +
                                                         format_number(kFoliage.lo) + ".." +
                                                         format_number(kFoliage.hi) + " deg)"};
-    out.rule_classes = rule_groups(sample, *out.rule);
+    out.rule_classes = rule_groups(sample, *out.rule, true);
     for (ColourClass& k : out.rule_classes) {
         k.reason = out.reason + ", " + k.reason;
+        for (ColourClass& sub : k.groups) {
+            sub.reason = out.reason + ", " + sub.reason;
+        }
     }
     // The greens in two groups: the fruit may be among them (dark green fruit whose noisy hue
     // strays out of foliage, green fruit beside brown bark): the rule competes with the groups.

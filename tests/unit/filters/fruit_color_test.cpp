@@ -139,6 +139,28 @@ TEST(FruitColor, TheRulesPointsInTwoGroupsAreOfferedForTheShapeTest) {
     EXPECT_TRUE(choose_fruit_color(repeat({{fruit, 400}, {leaf, 1000}}), {}).rule_classes.empty());
 }
 
+TEST(FruitColor, EachGroupOfTheRulesPointsOffersItsOwnGroups) {
+    // Pink fruit (hue 342, value 0.6) beside bark (hue 30, value 0.45) whose shaded points (value
+    // 0.16) have hues near red: hue parts the bark from the fruit with the dark points, and that
+    // group's own groups (value) part the fruit from the dark points.
+    const io::Rgb fruit{0.6f, 0.33f, 0.411f}, bark{0.45f, 0.348f, 0.2475f},
+        dark{0.16f, 0.088f, 0.094f}, leaf{0.235f, 0.49f, 0.176f};
+    const auto c = repeat({{fruit, 400}, {bark, 600}, {dark, 300}, {leaf, 1000}});
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_EQ(r.rule_classes.size(), 2u) << r.reason;
+    const auto n = [&](const ColourClass& k) { return color_filter(c, k.rule).kept.size(); };
+    const std::size_t with_fruit = n(r.rule_classes[0]) == 700u ? 0 : 1;
+    EXPECT_EQ(n(r.rule_classes[with_fruit]), 700u) << r.rule_classes[with_fruit].reason;
+    EXPECT_EQ(n(r.rule_classes[1 - with_fruit]), 600u) << r.rule_classes[1 - with_fruit].reason;
+    const std::vector<ColourClass>& sub = r.rule_classes[with_fruit].groups;
+    ASSERT_EQ(sub.size(), 2u) << r.rule_classes[with_fruit].reason;
+    std::array<std::size_t, 2> parts{n(sub[0]), n(sub[1])};
+    std::sort(parts.begin(), parts.end());
+    EXPECT_EQ(parts[0], 300u) << sub[0].reason;
+    EXPECT_EQ(parts[1], 400u) << sub[1].reason;
+    EXPECT_TRUE(r.rule_classes[1 - with_fruit].groups.empty());
+}
+
 TEST(FruitColor, OneGroupOfGreensIsNotCutInTwo) {
     // Green hues spread as a bell (normal, sigma 8 degrees, by its quantiles) or evenly over 60
     // degrees: Otsu's threshold separates 64 % and 75 % of their variance, under 80 %: one group.

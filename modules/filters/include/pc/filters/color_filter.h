@@ -40,6 +40,9 @@ struct ColorFilterResult {
     Indices kept;  ///< ascending
 };
 
+/// The rules of `params` on a colour's HSV (value, saturation, hue; not min_mean, not invert).
+[[nodiscard]] bool hsv_passes(const Hsv& colour, const ColorFilterParams& params);
+
 /// Keeps points by colour. A NaN channel fails every rule. O(n).
 [[nodiscard]] ColorFilterResult color_filter(std::span<const io::Rgb> colours,
                                              const ColorFilterParams& params);

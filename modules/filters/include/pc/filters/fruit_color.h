@@ -30,6 +30,8 @@ struct FruitColorParams {
 struct ColourClass {
     ColorFilterParams rule;
     std::string reason;  ///< why and what, for the report, when this class is kept
+    /// Its own points in two groups, where they form them (FruitColorChoice::rule_classes)
+    std::vector<ColourClass> groups;
 };
 
 /// The colour rule chosen for a cloud.
@@ -40,7 +42,8 @@ struct FruitColorChoice {
     /// When (nearly) every coloured point is green but the greens form two groups (green fruit
     /// among leaves of another green, dark fruit among lighter leaves): the two, for a shape
     /// test to choose between (pipeline::run_chain keeps the one whose points fruit centres
-    /// claim, else `rule`).
+    /// claim, else `rule`). Each with its own two groups where they form them (a class of hue
+    /// round the circle may hold the fruit with bark of another hue).
     std::vector<ColourClass> classes;
     /// `rule` is itself a candidate (3 % or more of the saturated points outside foliage hue):
     /// a class is kept instead only where its fruit centres claim more of its points than the
@@ -52,7 +55,7 @@ struct FruitColorChoice {
     bool rule_first = false;
     /// The points `rule` keeps in two groups (of hue, saturation or value): tried, each alone,
     /// where the rule's fruit centres claim too few of its points (bark or ground kept with
-    /// the fruit)
+    /// the fruit); each with its own two groups (`groups`), tried where neither is the fruit
     std::vector<ColourClass> rule_classes;
     /// The saturated points of foliage hue: counted instead of `rule` where its centres claim
     /// too few of its points and no group was kept (green fruit beside bark: the rule kept the
@@ -74,7 +77,9 @@ struct FruitColorChoice {
 ///    it, brown bark), the same, and the rule competes (`rule_competes`; from 10 % it is tried
 ///    first, `rule_first`); and when the points the rule keeps form two groups of hue,
 ///    saturation or value (fruit beside bark or ground: looser, 3 spreads apart), offer them as
-///    `rule_classes`; the saturated points of foliage hue are `greens`.
+///    `rule_classes`, each with its own two groups where they form them (`groups`: a hue
+///    group of the fruit may hold shaded bark whose dark points' hues are noise); the saturated
+///    points of foliage hue are `greens`.
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at
