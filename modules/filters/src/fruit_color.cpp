@@ -151,11 +151,12 @@ std::vector<ColourClass> two_sides(const ColorFilterParams& rule,
 /// The sample's colours `rule` keeps in two groups (fruit beside bark, ground or another fruit
 /// colour): Otsu's split of their hue (round the rule's hue band from its start, or the whole
 /// circle), saturation or value, whichever leaves the sides further apart, each side the rule
-/// narrowed on that axis; none under kSomeGroups. With `deeper`, each side's own two groups as
-/// well (`groups`: a side may hold the fruit beside shaded bark whose noisy hues reach the
-/// fruit's).
+/// narrowed on that axis, described as `head` + its own words; none under kSomeGroups. With
+/// `deeper`, each side's own two groups as well (`groups`: a side may hold the fruit beside
+/// shaded bark whose noisy hues reach the fruit's).
 std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample,
                                      const ColorFilterParams& rule,
+                                     const std::string& head,
                                      bool deeper) {
     const Interval hue = rule.hue_deg.value_or(Interval{0, 360}),
                    saturation = rule.saturation.value_or(Interval{0, 1}),
@@ -182,16 +183,13 @@ std::vector<ColourClass> rule_groups(const std::vector<Hsv>& sample,
         " of two groups (their means " + format_rounded(best) + " spreads apart)";
     std::vector<ColourClass> out =
         best == by_hue.separation
-            ? two_sides(rule, Axis::kHue, hue, std::fmod(hue.lo + by_hue.at, 360), "", apart)
+            ? two_sides(rule, Axis::kHue, hue, std::fmod(hue.lo + by_hue.at, 360), head, apart)
         : best == by_saturation.separation
-            ? two_sides(rule, Axis::kSaturation, saturation, by_saturation.at, "", apart)
-            : two_sides(rule, Axis::kValue, value, by_value.at, "", apart);
+            ? two_sides(rule, Axis::kSaturation, saturation, by_saturation.at, head, apart)
+            : two_sides(rule, Axis::kValue, value, by_value.at, head, apart);
     if (deeper) {
         for (ColourClass& side : out) {
-            side.groups = rule_groups(sample, side.rule, false);
-            for (ColourClass& g : side.groups) {
-                g.reason = side.reason + ", " + g.reason;
-            }
+            side.groups = rule_groups(sample, side.rule, side.reason + ", ", false);
         }
     }
     return out;
@@ -322,10 +320,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
                 ? two_sides(saturated_rule(s), Axis::kHue, {lo, lo}, g.at, groups + ": ", "")
                 : two_sides(saturated_rule(s), Axis::kValue, {kBlack, 1}, g.at, groups + ": ", "");
         for (ColourClass& k : out.classes) {
-            k.groups = rule_groups(sample, k.rule, false);
-            for (ColourClass& sub : k.groups) {
-                sub.reason = k.reason + ", " + sub.reason;
-            }
+            k.groups = rule_groups(sample, k.rule, k.reason + ", ", false);
         }
         return groups;
     };
@@ -350,13 +345,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
     out.greens = ColourClass{hue_rule(kFoliage, s), head + ": saturated and foliage green (hue " +
                                                         format_number(kFoliage.lo) + ".." +
                                                         format_number(kFoliage.hi) + " deg)"};
-    out.rule_classes = rule_groups(sample, *out.rule, true);
-    for (ColourClass& k : out.rule_classes) {
-        k.reason = out.reason + ", " + k.reason;
-        for (ColourClass& sub : k.groups) {
-            sub.reason = out.reason + ", " + sub.reason;
-        }
-    }
+    out.rule_classes = rule_groups(sample, *out.rule, out.reason + ", ", true);
     // The greens in two groups: the fruit may be among them (dark green fruit whose noisy hue
     // strays out of foliage, green fruit beside brown bark): the rule competes with the groups.
     if (const std::string groups =
