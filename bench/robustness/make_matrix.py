@@ -213,7 +213,10 @@ SHAPE_PARTS = [
 # test of session 32 reads branches) of ochre (185,135,45: a yellow-brown near the bark's hues)
 # (scored in session 33). 'held-out-20' (2241-2340, session 33, before any method for it) adds
 # jujube-like fruit (13 mm, aspect 1.3, single or up to three) of mahogany (110,45,30: a dark
-# red-brown, between red fruit and the red-brown bark, where shading darkens both alike).
+# red-brown, between red fruit and the red-brown bark, where shading darkens both alike)
+# (scored in session 34). 'held-out-21' (2341-2440, session 34, before any method for it) adds
+# hazelnut-like fruit (10 mm, aspect 1.15, in bunches of 2-4 touching) of tan (180,145,100: a
+# light brown of low saturation, between the grey-brown and the brown bark in hue, lighter).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -233,11 +236,16 @@ WOOD_PARTS = [
      {'jujube': (0.013, '--species plum --fruit-radius 0.013 --bunch-min 1 --bunch-max 3 '
                         '--touch-gap 0.001 --fruit-count 150 --canopy 0.5,0.5,0.4')},
      {'mahogany': (110, 45, 30)}, set()),
+    ('held-out-21', 2048,
+     {'hazelnut': (0.010, '--species plum --fruit-radius 0.010 --bunch-min 2 --bunch-max 4 '
+                          '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
+     {'tan': (180, 145, 100)}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
 ASPECTS['jujube'] = 1.3
+ASPECTS['hazelnut'] = 1.15
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
