@@ -441,6 +441,23 @@ TEST(SphereVote, RandomSolidsAreMeasuredByTheirPointsNotTheirOuterLayer) {
     EXPECT_LT(outer.fruit_radius, 9.0) << "the outer layer alone reads short";
 }
 
+TEST(SphereVote, TheSolidTestReadsNeighbourhoodsOfMostOfTheCloudFromAFewOfTheirPoints) {
+    // A first size larger than the cloud (the tree's wood kept by a colour rule): each of the
+    // solid test's neighbourhoods is the whole cloud, fitted from about a thousand of its points:
+    // a ball's are isotropic, a plate's flat.
+    Scene ball, plate;
+    add_solids(ball, {{Eigen::Vector3d::Zero(), 22}}, 1, 1);  // 44 600 points
+    for (int i = -60; i <= 60; ++i) {
+        for (int j = -60; j <= 60; ++j) {
+            if (i * i + j * j <= 3600) {
+                plate.add(Eigen::Vector3d(i, j, 0), 1, 1);  // 11 300
+            }
+        }
+    }
+    EXPECT_TRUE(sphere_vote(XyzView(ball.cloud), ball.label, {.fruit_radius = 100}).solid);
+    EXPECT_FALSE(sphere_vote(XyzView(plate.cloud), plate.label, {.fruit_radius = 250}).solid);
+}
+
 TEST(SphereVote, BunchesOfSmallSolidFruitAreNotReadAsOneFruit) {
     // Twelve bunches of 13 touching balls (a ball and its 12 neighbours, as grapes pack), 40
     // points each at random in the volume (about 3.5 spacings a radius): the normals of a
