@@ -857,6 +857,17 @@ std::uint32_t join_elongated(const XyzView& points,
     return merged;
 }
 
+/// The number of distinct labels above 0 among `members`.
+double parts(const std::vector<std::uint32_t>& labels, const std::vector<std::uint32_t>& members) {
+    std::unordered_set<std::uint32_t> seen;
+    for (const std::uint32_t i : members) {
+        if (labels[i] != 0) {
+            seen.insert(labels[i]);
+        }
+    }
+    return static_cast<double>(seen.size());
+}
+
 /// Drops parts below min_size points or min_relative × the median fruit's points (to 0) and
 /// numbers the rest 1.. by decreasing size. Labels 1..fruit are fruit around a centre, higher
 /// ones the leftovers of clusters no centre claimed. When centres claimed most points, the
@@ -948,9 +959,11 @@ void SphereVoteParams::validate() const {
         throw InvalidArgument("sphere_vote: max_samples must be >= 100");
     }
     if (!(join_near >= 0 && std::isfinite(join_near)) || !(join_convex > 0 && join_convex <= 2) ||
-        !(join_resolution >= 0 && std::isfinite(join_resolution))) {
+        !(join_resolution >= 0 && std::isfinite(join_resolution)) ||
+        !(coarse_joins >= 0 && std::isfinite(coarse_joins))) {
         throw InvalidArgument(
-            "sphere_vote: join_near and join_resolution must be >= 0, join_convex in (0, 2]");
+            "sphere_vote: join_near, join_resolution and coarse_joins must be >= 0, join_convex "
+            "in (0, 2]");
     }
     if (!(min_resolution >= 0 && std::isfinite(min_resolution))) {
         throw InvalidArgument("sphere_vote: min_resolution must be >= 0");
@@ -1223,11 +1236,25 @@ SphereVoteResult sphere_vote(const XyzView& points,
             }
         }
     }
-    // Elongated fruit split in two are joined where the cloud resolves a fruit's profile.
-    const std::uint32_t joined = params.join_near > 0 && R >= params.join_resolution * ss
-                                     ? join_elongated(points, members, labels, peaks, R,
-                                                      params.join_near, params.join_convex)
-                                     : 0;
+    // Elongated fruit split in two are joined where the cloud resolves a fruit's profile, and
+    // coarser where the joins are many (coarse_joins).
+    std::uint32_t joined = 0;
+    if (params.join_near > 0 && R >= params.join_resolution * ss) {
+        joined =
+            join_elongated(points, members, labels, peaks, R, params.join_near, params.join_convex);
+    } else if (params.join_near > 0) {
+        std::vector<std::uint32_t> trial = labels, counted = labels;
+        const std::uint32_t joins =
+            join_elongated(points, members, trial, peaks, R, params.join_near, params.join_convex);
+        const double fewer = parts(labels, members) - parts(trial, members);
+        const std::uint32_t count =
+            finish(counted, params.min_cluster_size, params.min_relative_size,
+                   static_cast<std::uint32_t>(peaks.size()));
+        if (fewer > 0 && fewer >= params.coarse_joins * count) {
+            labels = std::move(trial);
+            joined = joins;
+        }
+    }
     r.peaks = static_cast<std::uint32_t>(peaks.size()) - joined;
     return done();
 }

@@ -310,6 +310,15 @@ TEST(SphereVote, ElongatedFruitAreOneFruitTouchingSpheresStayTwo) {
     SphereVoteParams apart;
     apart.join_near = 0;  // without the join the long fruit count twice
     EXPECT_GT(sphere_vote(XyzView(s.cloud), s.label, apart).cluster_count, 11u);
+    // R spanning too few spacings for the join: it is made where it leaves at least
+    // coarse_joins × the count's parts fewer (4 of 15 here), else the long fruit count twice.
+    const auto coarse = [&](double share) {
+        return sphere_vote(XyzView(s.cloud), s.label,
+                           {.join_resolution = 20, .coarse_joins = share})
+            .cluster_count;
+    };
+    EXPECT_EQ(coarse(0.2), 11u);
+    EXPECT_EQ(coarse(0.3), 15u);
 }
 
 TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {

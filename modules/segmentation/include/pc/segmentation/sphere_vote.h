@@ -61,10 +61,14 @@ struct SphereVoteParams {
     /// Elongated fruit (two centres on one long axis, or a centre and a leftover end): two parts
     /// closer than join_near × R (leftovers 2.5 R) whose points form one convex body (the width
     /// where two fruit would touch at least join_convex × the chord of the widths at their
-    /// centres) are one fruit; only where R spans join_resolution spacings (0 near: never)
+    /// centres) are one fruit; where R spans join_resolution spacings (0 near: never), and
+    /// coarser only where the joins would leave at least coarse_joins × the count's parts fewer
+    /// (touching round fruit sampled so coarsely also read as one body now and then, but seldom
+    /// as many: docs/robustness.md, session 34)
     double join_near = 1.6;
     double join_convex = 0.9;
     double join_resolution = 6;
+    double coarse_joins = 0.2;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
 
@@ -109,7 +113,7 @@ struct SphereVoteResult {
 ///     of one fruit that DBSCAN separated join their peak.
 ///  5. Elongated fruit: two parts close together whose points form one convex body (no waist
 ///     between them, as two touching fruit have) are one fruit (join_near, join_convex), where
-///     R spans join_resolution spacings.
+///     R spans join_resolution spacings, and coarser where such pairs are many (coarse_joins).
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
                                            std::vector<std::uint32_t> labels,
