@@ -216,7 +216,11 @@ SHAPE_PARTS = [
 # red-brown, between red fruit and the red-brown bark, where shading darkens both alike)
 # (scored in session 34). 'held-out-21' (2341-2440, session 34, before any method for it) adds
 # hazelnut-like fruit (10 mm, aspect 1.15, in bunches of 2-4 touching) of tan (180,145,100: a
-# light brown of low saturation, between the grey-brown and the brown bark in hue, lighter).
+# light brown of low saturation, between the grey-brown and the brown bark in hue, lighter)
+# (scored in session 34). 'held-out-22' (2441-2540, session 34, before any method for it) adds
+# currant-like fruit (5 mm, round, in bunches of 6-12 touching: the size of the finest twigs) of
+# cream (235,225,195: saturation 0.17, near the grey of a mask export, as white currants,
+# snowberries and pale grapes are).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -240,12 +244,17 @@ WOOD_PARTS = [
      {'hazelnut': (0.010, '--species plum --fruit-radius 0.010 --bunch-min 2 --bunch-max 4 '
                           '--touch-gap 0.0005 --fruit-count 150 --canopy 0.5,0.5,0.4')},
      {'tan': (180, 145, 100)}, set()),
+    ('held-out-22', 2049,
+     {'currant': (0.005, '--species plum --fruit-radius 0.005 --bunch-min 6 --bunch-max 12 '
+                         '--touch-gap 0.0003 --fruit-count 200 --canopy 0.5,0.5,0.4')},
+     {'cream': (235, 225, 195)}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
 ASPECTS['jujube'] = 1.3
 ASPECTS['hazelnut'] = 1.15
+ASPECTS['currant'] = 1.0
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
