@@ -97,6 +97,9 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     SphereVoteParams vp{.fruit_radius = params.fruit_radius,
                         .min_cluster_size = params.min_cluster_size,
                         .min_relative_size = params.min_relative_size};
+    if (!params.branch_recheck) {
+        vp.branch_below = 0;
+    }
     SphereVoteResult v = sphere_vote(points, std::move(labels), vp);
     RecursiveSplitResult r;
     r.labels = std::move(v.labels);

@@ -383,24 +383,56 @@ TEST(SphereVote, OneClusterHoldingMostPointsDoesNotSetTheFirstSize) {
     EXPECT_EQ(r.peaks, 7u);
 }
 
+/// A branch: a tube of `radius` along z, `length` long and centred at z = 0, at x = `x`, points
+/// about one spacing apart (truth 0, DBSCAN cluster 50).
+void add_tube(Scene& s, double x, double radius, int length) {
+    const auto around = static_cast<int>(std::lround(2 * 3.141592653589793 * radius));
+    for (int z = 0; z < length; ++z) {
+        for (int k = 0; k < around; ++k) {
+            const double a = 2 * 3.141592653589793 * k / around;
+            s.add({x + radius * std::cos(a), radius * std::sin(a), z - 0.5 * length}, 0, 50);
+        }
+    }
+}
+
 TEST(SphereVote, ABranchOfTheFruitsRadiusGetsNoCentres) {
     // A branch (a tube of the fruit's radius 10, 200 long, one spacing between points) beside the
     // 7 fruit, in a DBSCAN cluster of its own: its normals meet on its axis, where the votes make
     // a row of peaks; its surface is curved one way only, the fruit's two ways.
     Scene s = hollow(10);
     const std::size_t fruit_points = s.cloud.size();
-    for (int z = 0; z < 200; ++z) {
-        for (int k = 0; k < 63; ++k) {
-            const double a = 2 * 3.141592653589793 * k / 63;
-            s.add({150 + 10 * std::cos(a), 10 * std::sin(a), z - 100.0}, 0, 50);
-        }
-    }
+    add_tube(s, 150, 10, 200);
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
     EXPECT_NEAR(r.fruit_radius, 10, 1);
     EXPECT_EQ(r.peaks, 7u);
     for (std::size_t i = fruit_points; i < s.cloud.size(); ++i) {
         ASSERT_EQ(r.labels[i], r.labels[fruit_points]) << "the branch is cut at point " << i;
     }
+}
+
+TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
+    // A tree's wood beside small fruit: a tube of radius 20 (300 long, one spacing between
+    // points: 37 800 of them), a ball of its radius (5000 points) and 35 fruit of radius 5
+    // (11 000). The normal lines of the tube meet on its axis at 20, so R read from all points is
+    // the tube's, and its one centre (the ball's) claims few points; measured again without the
+    // points curved one way only (the tube's side), R is the small fruit's.
+    Scene s;
+    for (int copy = 0; copy < 5; ++copy) {
+        Scene h = hollow(5);
+        for (std::size_t i = 0; i < h.cloud.size(); ++i) {
+            s.add({h.cloud[i].x, h.cloud[i].y + 60.0 * copy, h.cloud[i].z},
+                  h.truth[i] + 7 * static_cast<std::uint32_t>(copy), h.label[i] + 10 * copy);
+        }
+    }
+    add_shells(s, {{{-100, 0, 0}, 20}}, 100, 100);
+    add_tube(s, 100, 20, 300);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_NEAR(r.fruit_radius, 5, 0.5);
+    EXPECT_GE(r.peaks, 35u);
+    EXPECT_GT(r.larger_radius, 15) << "the first R was the tube's";
+    const SphereVoteResult without = sphere_vote(XyzView(s.cloud), s.label, {.branch_below = 0});
+    EXPECT_GT(without.fruit_radius, 15) << "without the recheck R is the tube's";
+    EXPECT_LT(without.peaks, 35u);
 }
 
 TEST(SphereVote, SlicesThatDbscanCutApartShareTheirFruitsNormals) {

@@ -80,8 +80,11 @@ struct ChainResult {
 /// among leaves) and the green points (green fruit beside bark). Each is counted alone where the
 /// rule's fruit centres claim too few of its points (two groups of greens: also where few points
 /// lie outside foliage hue), and the run of the class whose centres claim its points is kept
-/// (docs/robustness.md gives the shares). Where no group is offered only the green points are
-/// set aside (a copy of them), and the rule runs on `in` itself.
+/// (docs/robustness.md gives the shares). The classes compete with the fruit radius as first
+/// measured; the run kept, where its centres claim under half its points, is split again with
+/// the radius measured without the points on branches (RecursiveSplitParams::branch_recheck).
+/// Where no group is offered only the green points are set aside (a copy of them), and the rule
+/// runs on `in` itself.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});

@@ -42,6 +42,9 @@ struct RecursiveSplitParams {
     double min_relative_size =
         0;                    ///< cores rule: clusters below this × the median size become noise
     double fruit_radius = 0;  ///< spheres rule: the fruit radius if known (0: from the cloud)
+    /// spheres rule: an estimated R whose centres claim few points is measured again without
+    /// the points on branches (SphereVoteParams::branch_below; false: never)
+    bool branch_recheck = true;
 
     void validate() const;
 };

@@ -43,6 +43,13 @@ struct SphereVoteParams {
     double recheck_below = 0.95;
     /// ... and the smaller R taken when its centres claim at least this much more of the points
     double recheck_gain = 0.02;
+    /// An estimated R whose centres claim less than this share is measured again without the
+    /// points whose neighbours' normals spread one way only (the smallest eigenvalue of their
+    /// second moment under branch_ratio × the middle one: a branch's side, where the normal lines
+    /// meet on its axis at its radius; a sphere's 1, a spheroid's of aspect 1.75 at its waist
+    /// about 0.1), and that R taken when under half the first and its centres claim more (0: never)
+    double branch_below = 0.5;
+    double branch_ratio = 0.15;
     /// DBSCAN left fragments when its median cluster has fewer points: the first rough fruit
     /// size is then taken over points, not clusters (pc_fruitcount warns below the same size)
     double fragment_points = 40;
