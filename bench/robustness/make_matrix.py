@@ -220,7 +220,10 @@ SHAPE_PARTS = [
 # (scored in session 34). 'held-out-22' (2441-2540, session 34, before any method for it) adds
 # currant-like fruit (5 mm, round, in bunches of 6-12 touching: the size of the finest twigs) of
 # cream (235,225,195: saturation 0.17, near the grey of a mask export, as white currants,
-# snowberries and pale grapes are).
+# snowberries and pale grapes are) (scored in session 35). 'held-out-23' (2541-2640, session 35,
+# before any method for it) adds medlar-like fruit (25 mm, oblate aspect 0.85, single or up to
+# three touching) of lavender (175,150,200: a pale violet of saturation 0.25, bluer than any
+# fruit so far, as some plums and grapes with bloom are).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -248,6 +251,10 @@ WOOD_PARTS = [
      {'currant': (0.005, '--species plum --fruit-radius 0.005 --bunch-min 6 --bunch-max 12 '
                          '--touch-gap 0.0003 --fruit-count 200 --canopy 0.5,0.5,0.4')},
      {'cream': (235, 225, 195)}, set()),
+    ('held-out-23', 2050,
+     {'medlar': (0.025, '--species apple --fruit-radius 0.025 --bunch-min 1 --bunch-max 3 '
+                        '--touch-gap 0.002 --fruit-count 80 --canopy 0.6,0.6,0.5')},
+     {'lavender': (175, 150, 200)}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
@@ -255,6 +262,7 @@ ASPECTS['loquat'] = 1.3
 ASPECTS['jujube'] = 1.3
 ASPECTS['hazelnut'] = 1.15
 ASPECTS['currant'] = 1.0
+ASPECTS['medlar'] = 0.85
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
