@@ -198,6 +198,36 @@ double log_mode(std::vector<double>& v) {
     return near.empty() ? mode : median(near);
 }
 
+/// The second moment of the normals within `around` of `at` (`grid`, a cell of `around` or
+/// more), each counted with weight(j) (0: left out): its eigenvalues, ascending, and the total
+/// weight. The normals' spread: on a sphere the two smaller eigenvalues are alike; a branch's
+/// normals lie across its axis, in one plane (the smallest about 0).
+struct Spread {
+    V3 eigenvalues = V3::Zero();
+    double weight = 0;
+};
+template <class Weight>
+Spread normal_spread(const pcl::PointXYZ& at,
+                     double around,
+                     const search::Grid& grid,
+                     const Normals& nm,
+                     Weight weight) {
+    Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+    Spread out;
+    grid.for_each_within(at, around, [&](std::uint32_t j, double) {
+        if (const double w = weight(j); w > 0) {
+            moment += w * nm.n[j] * nm.n[j].transpose();
+            out.weight += w;
+        }
+    });
+    if (out.weight > 0) {
+        out.eigenvalues = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(moment / out.weight,
+                                                                         Eigen::EigenvaluesOnly)
+                              .eigenvalues();
+    }
+    return out;
+}
+
 /// Where the normal lines of nearby points (same cluster, h/2..h apart, both with clear normals)
 /// meet: on a sphere both at distance R. The mode of those distances; 0 with fewer than 50 pairs.
 /// With `feet` the lines start at the normals' feet (also h/2 apart or more): on SfM density
@@ -210,21 +240,9 @@ double radius_from_normals(const Sample& s, const Normals& nm, bool feet, double
     const double h = nm.scale;
     const search::Grid grid(s.view, h);
     const auto one_way_only = [&](const pcl::PointXYZ& p) {
-        Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
-        double weight = 0;
-        grid.for_each_within(p, h, [&](std::uint32_t j, double) {
-            if (nm.w[j] >= 0.5) {
-                moment += nm.n[j] * nm.n[j].transpose();
-                weight += 1;
-            }
-        });
-        if (weight < 5) {
-            return false;
-        }
-        const V3 ev =
-            Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(moment / weight, Eigen::EigenvaluesOnly)
-                .eigenvalues();
-        return ev(0) < one_way * ev(1);
+        const Spread sp = normal_spread(
+            p, h, grid, nm, [&](std::uint32_t j) { return nm.w[j] >= 0.5 ? 1.0 : 0.0; });
+        return sp.weight >= 5 && sp.eigenvalues(0) < one_way * sp.eigenvalues(1);
     };
     const std::size_t stride = std::max<std::size_t>(1, s.view.size / 20000);
     std::vector<double> dist;
@@ -387,17 +405,10 @@ constexpr double kThicker = 2.0;
 /// under `two_way`): a branch, not a fruit.
 bool curved_one_way(
     const V3& centre, double around, double two_way, const search::Grid& grid, const Normals& nm) {
-    Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
-    double weight = 0;
-    grid.for_each_within(point(centre), around, [&](std::uint32_t j, double) {
-        if (nm.w[j] > kVotes) {
-            moment += nm.w[j] * nm.n[j] * nm.n[j].transpose();
-            weight += nm.w[j];
-        }
+    const Spread sp = normal_spread(point(centre), around, grid, nm, [&](std::uint32_t j) {
+        return nm.w[j] > kVotes ? static_cast<double>(nm.w[j]) : 0.0;
     });
-    return weight > 0 &&
-           Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(moment / weight, Eigen::EigenvaluesOnly)
-                   .eigenvalues()(0) < two_way;
+    return sp.weight > 0 && sp.eigenvalues(0) < two_way;
 }
 
 /// Votes sorted into cubic cells (flat arrays, cells found by binary search), and the peaks of
@@ -972,6 +983,9 @@ void SphereVoteParams::validate() const {
     }
     if (!(recheck_gain >= 0 && recheck_gain < 1)) {
         throw InvalidArgument("sphere_vote: recheck_gain must be in [0, 1)");
+    }
+    if (!(branch_below >= 0 && branch_below <= 1)) {
+        throw InvalidArgument("sphere_vote: branch_below must be in [0, 1]");
     }
     if (!(branch_ratio >= 0 && branch_ratio <= 1)) {
         throw InvalidArgument("sphere_vote: branch_ratio must be in [0, 1]");
