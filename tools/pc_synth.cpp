@@ -43,6 +43,9 @@ std::string truth_json(const std::string& species,
                                         {"radius", x.radius * rp.scale},
                                         {"bunch", x.bunch},
                                         {"points", r.fruit_points[f]}};
+        if (x.blush_from <= 1) {  // bicoloured: the share of its surface blushed
+            fruit["blush"] = (1 - x.blush_from) / 2;
+        }
         if (!x.round()) {  // a spheroid: radius is the same-volume sphere's
             fruit["aspect"] = x.aspect;
             fruit["axis"] = x.axis;
@@ -140,6 +143,14 @@ int main(int argc, char** argv) {
         "fruit-rgb", "240,165,95",
         [&](const std::string& s) { sp.fruit_rgb = parse_rgb("fruit-rgb", s); },
         "fruit colour R,G,B (0..255); default by species");
+    tool.option(
+        "blush-rgb", "185,35,45",
+        [&](const std::string& s) { sp.blush_rgb = parse_rgb("blush-rgb", s); },
+        "bicoloured fruit: blush colour R,G,B (0..255), over a cap of each fruit");
+    tool.option("blush-min", &sp.blush_min,
+                "bicoloured fruit: least share of a fruit's surface blushed (0..1)");
+    tool.option("blush-max", &sp.blush_max,
+                "bicoloured fruit: largest share blushed (0: one colour, the default)");
     tool.option("branches", &sp.branches,
                 "wood: a trunk forking into this many main branches, two side branches each (0: "
                 "no wood)");

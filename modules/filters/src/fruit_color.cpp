@@ -33,6 +33,8 @@ constexpr double kSomeGroups = 3;
 /// From this share of the saturated points outside foliage hue, the rule's fruit are likely the
 /// fruit: the green groups are tried only where its centres claim too little (bark, not fruit).
 constexpr double kFewFruitish = 0.1;
+/// The pale points are offered from this share of the colours.
+constexpr double kLeastPale = 0.03;
 /// Each group holds at least this share of the histogram.
 constexpr double kLeastGroup = 0.05;
 /// Saturation is not lowered below this for pale fruit (greys of 8-bit colour reach it) ...
@@ -82,31 +84,51 @@ Groups otsu(const std::vector<double>& histogram, double from, double width) {
 
 bool is_foliage(const Hsv& c) { return c.h >= kFoliage.lo && c.h <= kFoliage.hi; }
 
+/// The saturations of the points that are not foliage green nor black, in bins of 0.01, and
+/// their Otsu split: grey or dark ground, bark, sky, pale and saturated fruit.
+struct Saturations {
+    std::vector<double> histogram = std::vector<double>(100, 0.0);
+    Groups split;
+};
+
+Saturations not_foliage_saturations(const std::vector<Hsv>& sample) {
+    Saturations out;
+    for (const Hsv& c : sample) {
+        if (c.v >= kBlack && !is_foliage(c)) {
+            ++out.histogram[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
+        }
+    }
+    out.split = otsu(out.histogram, 0, 0.01);
+    return out;
+}
+
 /// The saturation from which a colour counts as saturated: `line`, or lower for pale fruit
 /// (cream, pale yellow: saturation about 0.2, straddling 0.25). Where the saturations of the
 /// points that are not foliage green form two groups (grey or dark ground, bark, sky; fruit)
 /// split between kLeastSaturation and `line`, and `line` would cut off kStraddle of the upper
 /// group, the split.
-double saturation_line(const std::vector<Hsv>& sample, double line) {
-    std::vector<double> saturations(100, 0.0);  // bins of 0.01
-    for (const Hsv& c : sample) {
-        if (c.v >= kBlack && !is_foliage(c)) {
-            ++saturations[std::min<std::size_t>(99, static_cast<std::size_t>(100 * c.s))];
-        }
-    }
-    const Groups pale = otsu(saturations, 0, 0.01);
+double saturation_line(const Saturations& not_foliage, double line) {
+    const Groups& pale = not_foliage.split;
     double upper = 0, under_line = 0;  // the upper group, and its part under `line`
-    for (std::size_t b = 0; b < saturations.size(); ++b) {
+    for (std::size_t b = 0; b < not_foliage.histogram.size(); ++b) {
         const double lo = 0.01 * static_cast<double>(b);
         if (lo >= pale.at - 1e-9) {
-            upper += saturations[b];
-            under_line += lo + 0.01 <= line + 1e-9 ? saturations[b] : 0.0;
+            upper += not_foliage.histogram[b];
+            under_line += lo + 0.01 <= line + 1e-9 ? not_foliage.histogram[b] : 0.0;
         }
     }
     return pale.separation >= kTwoGroups && pale.at < line && pale.at >= kLeastSaturation &&
                    under_line >= kStraddle * upper
                ? pale.at
                : line;
+}
+
+/// Where the pale points end: the saturation line `s`, or, where the points that are not
+/// foliage green form two groups of saturation split above it (pale fruit under brown bark or
+/// red fruit), the split.
+double pale_line(const Saturations& not_foliage, double s) {
+    const Groups& g = not_foliage.split;
+    return g.separation >= kTwoGroups && g.at > s ? g.at : s;
 }
 
 /// Saturated (>= min_saturation) and not black.
@@ -255,7 +277,8 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
             sample.push_back(c);
         }
     }
-    const double s = saturation_line(sample, p.min_saturation);
+    const Saturations not_foliage = not_foliage_saturations(sample);
+    const double s = saturation_line(not_foliage, p.min_saturation);
     const std::string floor = s < p.min_saturation ? ", saturation >= " + format_number(s) +
                                                          " (the colours' own gap, below " +
                                                          format_number(p.min_saturation) + ")"
@@ -324,6 +347,19 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
         }
         return groups;
     };
+    // Pale fruit (cream, lavender, pale yellow) are under the saturation line: every rule below
+    // misses them; their points are offered, for the chain to count where the rule's are not
+    // claimed as fruit.
+    const ColorFilterParams pale{.saturation = Interval{0, pale_line(not_foliage, s)},
+                                 .value = Interval{kBlack, 1}};
+    if (static_cast<double>(std::count_if(sample.begin(), sample.end(), [&](const Hsv& c) {
+            return hsv_passes(c, pale);
+        })) >= kLeastPale * static_cast<double>(seen)) {
+        const std::string reason = "auto: natural colours: the pale points (saturation 0.." +
+                                   format_number(pale.saturation->hi) +
+                                   ", not black: cream, pale or greyish fruit)";
+        out.pale = ColourClass{pale, reason, rule_groups(sample, pale, reason + ", ", false)};
+    }
     const std::size_t fruitish = saturated - foliage;
     if (static_cast<double>(fruitish) < 0.03 * static_cast<double>(saturated)) {
         out.rule = saturated_rule(s);

@@ -460,12 +460,45 @@ constexpr const char* kBarkKept =
     "the green points were counted instead (green fruit among leaves); check the count, or give "
     "--fruit-color";
 
+constexpr const char* kPaleKept =
+    "the colour rule's saturated points look like bark or leaves, not fruit (its fruit centres "
+    "claim few of them): the pale points were counted instead (cream or pale fruit); check the "
+    "count, or give --fruit-color";
+
 /// The run a colour candidate kept whose fruit centres claim under this share of its points is
 /// split again with R measured without the points on branches (segmentation::SphereVoteParams::
 /// branch_below): the candidates compete with R as first measured, as the claims above were
 /// judged (with the recheck in every candidate, a rule that kept the wood claimed more and hid
 /// a group of the fruit alone: 148 -> 326 of 150, docs/robustness.md, session 35).
 constexpr double kBranchAgain = 0.5;
+
+/// The pale points are no fruit where their fruit radius is over this share of the diagonal of
+/// the box holding the middle 98 % of their points along each axis: a tree's fruit are many times
+/// smaller than it, while a lone blob (the ground counted alone) is claimed whole by one centre of
+/// its own size. On the matrix: the dark ground as one "fruit" 0.51 and 0.56 (green fruit beside
+/// bark, 1887 and 2391: 50 and 90 counted as 1), cream fruit 0.012.
+constexpr double kLargestFruit = 0.1;
+
+/// The diagonal of the box holding the middle 98 % of `cloud`'s points along each axis (stray
+/// outliers aside; non-finite coordinates ignored); 0 for an empty cloud.
+double spread(const io::Blob& cloud) {
+    if (cloud.size() == 0) {
+        return 0;
+    }
+    const io::XyzPoints points(cloud);
+    const XyzView& v = points.view();
+    double d2 = 0;
+    std::vector<double> along(v.size);
+    for (int a = 0; a < 3; ++a) {
+        for (std::size_t i = 0; i < v.size; ++i) {
+            const pcl::PointXYZ q = v[i];
+            along[i] = a == 0 ? q.x : a == 1 ? q.y : q.z;
+        }
+        const double lo = percentile_of_finite(along, 1), hi = percentile_of_finite(along, 99);
+        d2 += std::isfinite(hi - lo) ? (hi - lo) * (hi - lo) : 0.0;
+    }
+    return std::sqrt(d2);
+}
 
 /// A colour candidate kept: its run, the rule in words, and the rule.
 struct Kept {
@@ -533,7 +566,7 @@ ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progres
     }
     if (p.fruit_color) {
         filters::FruitColorChoice c = choose_fruit_color(in, *p.fruit_color);
-        if ((c.classes.size() == 2 || c.greens) && p.split &&
+        if ((c.classes.size() == 2 || c.greens || c.pale) && p.split &&
             p.split->rule == segmentation::SplitRule::kSpheres) {
             return by_shape(std::move(in), p, std::move(c), progress);
         }
@@ -563,12 +596,19 @@ ChainResult by_shape(io::Blob in,
                    ? 0.0
                    : step_value(run, "recursive_split", "claimed").value_or(0);
     };
-    // Two colour classes, each counted alone on the input: the runs and their claims.
-    const auto each_alone = [&](const std::vector<filters::ColourClass>& two) {
+    // The chain on the points of `from` (the input, or a copy of a class's points that holds
+    // them) that `rule` keeps, its colour step counted against the input.
+    const std::size_t points_in = in.size();
+    const auto count_class = [&](const io::Blob& from, const filters::ColorFilterParams& rule) {
+        return chain_after(
+            colour_step(io::copy_points(from, colour_kept(from, rule)), points_in, rule), rest, {});
+    };
+    // Two colour classes, each counted alone on `from`: the runs and their claims.
+    const auto each_alone = [&](const std::vector<filters::ColourClass>& two,
+                                const io::Blob& from) {
         std::pair<std::vector<ChainResult>, std::vector<double>> out;
         for (const filters::ColourClass& k : two) {
-            rest.color = k.rule;
-            out.first.push_back(run_chain(in, rest));
+            out.first.push_back(count_class(from, k.rule));
             out.second.push_back(claims(out.first.back()));
         }
         return out;
@@ -595,15 +635,18 @@ ChainResult by_shape(io::Blob in,
         }
         return out;
     };
-    // Where the colours offer no groups, the rule and the green points are the only candidates:
-    // the green points are set aside (a copy of them alone) and the rule counted on the input
-    // itself, not on a copy of it (a cloud of 1M points would peak at over 4 times its size).
+    // Where the colours offer no groups, the rule, the green and the pale points are the only
+    // candidates: the green and the pale points are set aside (a copy of each alone) and the rule
+    // counted on the input itself, not on a copy of it (a cloud of 1M points would peak at over
+    // 4 times its size).
     const bool offered = c.classes.size() == 2 || !c.rule_classes.empty();
-    std::optional<Step> greens;
-    if (!offered && c.greens) {
-        greens = colour_step(io::copy_points(in, colour_kept(in, c.greens->rule)), in.size(),
-                             c.greens->rule);
-    }
+    std::optional<io::Blob> greens, pale;
+    const auto aside = [&](const std::optional<filters::ColourClass>& k) {
+        return !offered && k ? std::optional(io::copy_points(in, colour_kept(in, k->rule)))
+                             : std::nullopt;
+    };
+    greens = aside(c.greens);
+    pale = aside(c.pale);
     std::optional<ChainResult> by_rule;
     double rule_claimed = 0;
     if (c.rule_competes || !offered || !c.rule_classes.empty()) {
@@ -619,10 +662,10 @@ ChainResult by_shape(io::Blob in,
     // (kClaimsMore: a group of the fruit's shaded or lit points alone is claimed a little more).
     // `first_claims`, when given, gets the first groups' claims.
     const auto fruit_group = [&](const std::vector<filters::ColourClass>* two, double than,
-                                 std::vector<double>* first_claims) {
+                                 std::vector<double>* first_claims, const io::Blob& from) {
         std::optional<Kept> kept;
         while (two != nullptr && !two->empty()) {
-            auto [groups, g] = each_alone(*two);
+            auto [groups, g] = each_alone(*two, from);
             if (first_claims != nullptr) {
                 *first_claims = g;
                 first_claims = nullptr;
@@ -648,13 +691,13 @@ ChainResult by_shape(io::Blob in,
         std::optional<Kept> kept;
         for (std::size_t k = 0; k < two.size() && !kept; ++k) {
             kept = fruit_group(&two[k].groups, std::max(rule_claimed, claimed.at(k)) + kClaimsMore,
-                               nullptr);
+                               nullptr, in);
         }
         return kept;
     };
     if (!c.rule_classes.empty() && rule_claimed < kDoubtfulRule) {
         std::vector<double> claimed;
-        auto kept = fruit_group(&c.rule_classes, rule_claimed, &claimed);
+        auto kept = fruit_group(&c.rule_classes, rule_claimed, &claimed, in);
         if (!kept && rule_claimed < kFewClaimed) {  // and the rule far from fruit
             kept = within(c.rule_classes, claimed);
         }
@@ -662,17 +705,49 @@ ChainResult by_shape(io::Blob in,
             return done(std::move(kept->run), kept->colour, kept->rule);
         }
     }
+    // Pale fruit (under the saturation line: cream, lavender): the rule kept the bark or the
+    // leaves. The pale points, where their centres claim as fruit's do and more than `than`; one
+    // of their own groups (the fruit beside dark ground) where it is claimed more.
+    const auto pale_fruit = [&](double than) -> std::optional<Kept> {
+        if (!c.pale || rule_claimed >= kFewClaimed) {
+            return std::nullopt;
+        }
+        const io::Blob& from = pale ? *pale : in;
+        ChainResult run = count_class(from, c.pale->rule);
+        const double g = claims(run),
+                     r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
+        if (!(g >= kFruitClaims && g > than && r <= kLargestFruit * spread(run.labelled))) {
+            return std::nullopt;
+        }
+        if (g < kDoubtfulRule) {
+            if (auto finer = fruit_group(&c.pale->groups, g + kClaimsMore, nullptr, from)) {
+                return finer;
+            }
+        }
+        return Kept{std::move(run),
+                    c.pale->reason + " (their fruit centres claim " + share(g) +
+                        " of their points, " + share(rule_claimed) + " of the rule's)",
+                    &c.pale->rule};
+    };
     // Green fruit beside bark: the rule kept the bark (its centres claim few of its points) and
-    // the greens form no two groups: the green points, where their centres claim more.
+    // the greens form no two groups: the green points, where their centres claim more, and more
+    // than the pale points'.
     if (c.greens && c.classes.size() != 2 && rule_claimed < kFewClaimed) {
-        rest.color = c.greens->rule;
-        ChainResult green =
-            greens ? chain_after(std::move(*greens), rest, {}) : run_chain(in, rest);
-        if (const double g = claims(green); g > rule_claimed + kClaimsMore) {
+        ChainResult green = count_class(greens ? *greens : in, c.greens->rule);
+        greens.reset();
+        const double g = claims(green);
+        if (auto kept = pale_fruit(std::max(g, rule_claimed + kClaimsMore))) {
+            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
+        }
+        if (g > rule_claimed + kClaimsMore) {
             return done(std::move(green), &c.greens->rule,
                         c.greens->reason + " (their fruit centres claim " + share(g) +
                             " of their points, " + share(rule_claimed) + " of the rule's)",
                         {kBarkKept});
+        }
+    } else if (c.classes.size() != 2) {
+        if (auto kept = pale_fruit(rule_claimed + kClaimsMore)) {
+            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
         }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
@@ -681,7 +756,7 @@ ChainResult by_shape(io::Blob in,
             c.reason + " (its fruit centres claim " + share(rule_claimed) + " of its points)",
             c.warnings);
     }
-    auto [runs, claimed] = each_alone(c.classes);
+    auto [runs, claimed] = each_alone(c.classes, in);
     const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
     const std::string of_rule =
         c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "";
@@ -693,13 +768,18 @@ ChainResult by_shape(io::Blob in,
     runs[other] = {};
     std::optional<Kept> finer;
     if (kept_best && claimed[best] < kDoubtfulRule) {
-        finer = fruit_group(&c.classes[best].groups, claimed[best] + kClaimsMore, nullptr);
+        finer = fruit_group(&c.classes[best].groups, claimed[best] + kClaimsMore, nullptr, in);
     } else if (!kept_best) {
         runs.clear();
         finer = within(c.classes, claimed);
     }
     if (finer) {
         return done(std::move(finer->run), finer->colour, finer->rule);
+    }
+    if (!kept_best) {
+        if (auto kept = pale_fruit(std::max(claimed[0], claimed[1]) + kClaimsMore)) {
+            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
+        }
     }
     if (kept_best) {
         return done(std::move(runs[best]), &c.classes[best].rule,

@@ -388,7 +388,7 @@ void render_implicit(const Scene& s,
             c += sigma * rng.normal();
         }
         if (draw < keep) {
-            emit.add(q, emit.shade(s.fruit_rgb, tone[owner[n]]), owner[n] + 1);
+            emit.add(q, emit.shade(s.fruit_colour(owner[n], q), tone[owner[n]]), owner[n] + 1);
         }
     }
     add_bridges(s, p, rng, emit);
@@ -425,7 +425,8 @@ void render_solid(const Scene& s,
             kept = r < 0.15 ? std::vector<Voxel>{} : degrade(s.fruits[f], fruit[f], r, v, rng);
         }
         for (const auto& x : kept) {
-            emit.add(centre_of(x, v), emit.shade(s.fruit_rgb, tone[f]),
+            const Vec3 q = centre_of(x, v);
+            emit.add(q, emit.shade(s.fruit_colour(f, q), tone[f]),
                      static_cast<std::uint32_t>(f + 1));
         }
     }

@@ -45,7 +45,7 @@ public:
             for (auto& c : q) {
                 c += p_.noise * r * rng_.normal();
             }
-            const std::uint32_t rgb = paint_.fruit(s_.fruit_rgb, tone, x.normal(d));
+            const std::uint32_t rgb = paint_.fruit(s_.fruit_colour(f, q), tone, x.normal(d));
             for (std::size_t k = 0; k < copies; ++k) {
                 add_point(out_, q, rgb, static_cast<std::uint32_t>(f + 1));
             }

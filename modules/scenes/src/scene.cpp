@@ -159,6 +159,22 @@ void SceneParams::validate() const {
     require(aspect_spread >= 0 && aspect_spread < 1, "aspect_spread must be in [0, 1)");
     require(branches <= 100, "branches must be in 0..100");
     require(trunk_radius > 0 && trunk_radius <= 1, "trunk_radius must be in (0, 1] m");
+    require(blush_min >= 0 && blush_min <= blush_max && blush_max <= 1,
+            "blush shares must satisfy 0 <= blush_min <= blush_max <= 1");
+}
+
+const std::array<std::uint8_t, 3>& Scene::fruit_colour(std::size_t f, const Vec3& q) const {
+    const Fruit& x = fruits[f];
+    if (x.blush_from > 1) {
+        return fruit_rgb;
+    }
+    double along = 0, length2 = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double d = q[a] - x.centre[a];
+        along += d * x.blush_side[a];
+        length2 += d * d;
+    }
+    return along >= x.blush_from * std::sqrt(length2) ? blush_rgb : fruit_rgb;
 }
 
 const std::vector<std::string>& species_names() {
@@ -312,6 +328,15 @@ Scene make_scene(const SceneParams& p) {
     if (p.branches > 0) {
         s.branches = grow_wood(p);
         s.wood_rgb = p.wood_rgb;
+    }
+    if (p.blush_max > 0) {
+        // A cap of the unit sphere whose cosine is at least c holds (1 - c) / 2 of its area.
+        Rng blush(p.seed, 6);
+        s.blush_rgb = p.blush_rgb;
+        for (Fruit& x : s.fruits) {
+            x.blush_side = blush.direction();
+            x.blush_from = 1 - 2 * blush.uniform(p.blush_min, p.blush_max);
+        }
     }
     return s;
 }

@@ -238,6 +238,35 @@ TEST(FruitColor, PaleFruitAreKeptWhereTheColoursHaveTheirOwnGap) {
     EXPECT_EQ(choose_fruit_color(red, {}).rule->saturation->lo, 0.25);
 }
 
+TEST(FruitColor, PaleFruitUnderBrownBarkAreOfferedAsThePalePoints) {
+    // Cream fruit (235, 225, 195: saturation 0.17) among leaves beside brown bark (100, 75, 50:
+    // 0.5): the fruit are the lower of the two saturation groups, so the rule keeps the bark; the
+    // points under the split of the two are offered (`pale`), the fruit's whole and no bark.
+    std::mt19937 rng(11);
+    auto c = around({235, 225, 195}, 900, rng);
+    const auto leaves = around({60, 125, 45}, 600, rng);
+    const auto bark = around({100, 75, 50}, 300, rng);
+    c.insert(c.end(), leaves.begin(), leaves.end());
+    c.insert(c.end(), bark.begin(), bark.end());
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.rule);
+    ASSERT_TRUE(r.pale) << r.reason;
+    const auto kept = color_filter(c, r.pale->rule).kept;
+    const auto fruit = std::count_if(kept.begin(), kept.end(), [](auto i) { return i < 900; });
+    EXPECT_GE(fruit, 890) << r.pale->reason;
+    EXPECT_EQ(kept.size(), static_cast<std::size_t>(fruit)) << r.pale->reason;
+    // the line or the split of the two groups, whichever is higher; under the bark's
+    EXPECT_GE(r.pale->rule.saturation->hi, 0.25);
+    EXPECT_LT(r.pale->rule.saturation->hi, 0.45);
+    // the rule keeps the bark and hardly any fruit
+    const auto by_rule = color_filter(c, *r.rule).kept;
+    EXPECT_LT(std::count_if(by_rule.begin(), by_rule.end(), [](auto i) { return i < 900; }), 50);
+    // Saturated fruit and leaves only: no pale points, none offered.
+    auto red = around({200, 40, 40}, 900, rng);
+    red.insert(red.end(), leaves.begin(), leaves.end());
+    EXPECT_FALSE(choose_fruit_color(red, {}).pale);
+}
+
 TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {
     // Bands (degrees): red 320..35, orange 10..55, yellow 35..80, green 55..170, purple 240..350.
     // Neighbouring bands overlap on purpose (an orange-red apple is both).

@@ -1,5 +1,6 @@
 // The sampled modes (surface, sfm, stripes, volume), mask colours, interpenetrating fruit and
 // units: each against a closed form.
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -220,6 +221,48 @@ TEST(Sampled, MaskColoursAreWhiteFruitOnBlack) {
         }
         EXPECT_GT(dark, 0u) << mode_name(m);  // leaves and ground
     }
+}
+
+TEST(Sampled, BlushedFruitWearTheBlushOverTheirShareOfTheSurface) {
+    // Each fruit's blushed cap holds its share of the fruit's surface points (uniform over the
+    // area: (1 - cos) / 2 of a sphere's), on its own side; without blush the scene is unchanged.
+    SceneParams sp = species("peach");
+    sp.fruit_count = 20;
+    sp.canopy = {0.5, 0.5, 0.5};
+    sp.fruit_rgb = {205, 195, 95};
+    const Scene plain = make_scene(sp);
+    sp.blush_min = 0.2;
+    sp.blush_max = 0.8;
+    sp.blush_rgb = {180, 40, 50};
+    const Scene s = make_scene(sp);
+    ASSERT_EQ(s.fruits.size(), plain.fruits.size());
+    const Rendered r = render(s, bare(Mode::kSurface, 0.002));
+    const Rendered one = render(plain, bare(Mode::kSurface, 0.002));
+    EXPECT_EQ(r.xyz, one.xyz);  // the same fruit, the same points
+    std::vector<double> red(s.fruits.size(), 0), all(s.fruits.size(), 0);
+    for (std::size_t k = 0; k < r.xyz.size(); ++k) {
+        if (r.gt[k] != 0) {
+            const auto f = r.gt[k] - 1;
+            all[f] += 1;
+            red[f] += ((r.rgb[k] >> 8) & 255) < 120;  // the blush's green channel 40 (x 1.05 + 8)
+        }
+    }
+    std::vector<double> shares;
+    for (std::size_t f = 0; f < s.fruits.size(); ++f) {
+        const double share = (1 - s.fruits[f].blush_from) / 2;
+        ASSERT_GE(share, 0.2);
+        ASSERT_LE(share, 0.8);
+        shares.push_back(share);
+        if (all[f] > 300) {  // sampled whole: the cap's share of the points within a few %
+            EXPECT_NEAR(red[f] / all[f], share, 0.06) << f;
+        }
+    }
+    EXPECT_GT(*std::max_element(shares.begin(), shares.end()) -
+                  *std::min_element(shares.begin(), shares.end()),
+              0.2);  // drawn per fruit
+    EXPECT_EQ(plain.fruits[0].blush_from, 2);
+    sp.blush_min = 0.9;  // above blush_max
+    EXPECT_THROW((void)make_scene(sp), InvalidArgument);
 }
 
 TEST(Sampled, ScaleAndOffsetMoveEveryPointAndNothingElse) {

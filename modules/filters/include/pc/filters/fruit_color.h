@@ -61,6 +61,12 @@ struct FruitColorChoice {
     /// too few of its points and no group was kept (green fruit beside bark: the rule kept the
     /// bark; the leaves are sheets the split drops)
     std::optional<ColourClass> greens;
+    /// Natural colours: the points under the saturation line (or under the split of two
+    /// saturation groups above it: pale fruit beside brown bark) and not black, where they are 3 %
+    /// or more: counted instead of `rule` where its centres claim too few of its points and
+    /// nothing else was kept (cream fruit: the rule kept the bark, or the leaves), with their own
+    /// two groups (`groups`: the fruit beside dark ground)
+    std::optional<ColourClass> pale;
 };
 
 /// Chooses the colour rule. A word other than auto maps to a fixed rule: mask -> the paper's
@@ -79,7 +85,8 @@ struct FruitColorChoice {
 ///    saturation or value (fruit beside bark or ground: looser, 3 spreads apart), offer them as
 ///    `rule_classes`, each with its own two groups where they form them (`groups`: a hue
 ///    group of the fruit may hold shaded bark whose dark points' hues are noise); the saturated
-///    points of foliage hue are `greens`.
+///    points of foliage hue are `greens`; the points under the saturation line (or under the
+///    split of two saturation groups above it) and not black are `pale`, 3 % of them or more.
 /// Two groups: Otsu's threshold on the histogram leaves the means of its sides at least 4 times
 /// their rms spread apart, each side 5 % of the points or more. Pale fruit: when the saturations
 /// of the points that are not foliage green form two groups split below min_saturation (and at

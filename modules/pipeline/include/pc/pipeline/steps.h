@@ -77,14 +77,15 @@ struct ChainResult {
 /// Natural colours under the spheres split: the colour rule chosen from the cloud
 /// (filters::choose_fruit_color) is checked by shape against the other classes the colours
 /// offer: the rule's own two groups (bark beside the fruit), two groups of greens (green fruit
-/// among leaves) and the green points (green fruit beside bark). Each is counted alone where the
+/// among leaves), the green points (green fruit beside bark) and the pale points (cream fruit,
+/// under the saturation line, beside bark or leaves). Each is counted alone where the
 /// rule's fruit centres claim too few of its points (two groups of greens: also where few points
 /// lie outside foliage hue), and the run of the class whose centres claim its points is kept
 /// (docs/robustness.md gives the shares). The classes compete with the fruit radius as first
 /// measured; the run kept, where its centres claim under half its points, is split again with
 /// the radius measured without the points on branches (RecursiveSplitParams::branch_recheck).
-/// Where no group is offered only the green points are set aside (a copy of them), and the rule
-/// runs on `in` itself.
+/// Where no group is offered only the green and the pale points are set aside (a copy of each),
+/// and the rule runs on `in` itself.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});

@@ -21,6 +21,10 @@ struct Fruit {
     std::uint32_t bunch = 0;
     double aspect = 1;
     Vec3 axis{0, 0, 1};
+    /// Bicoloured fruit: the points whose direction from the centre lies within the cap about
+    /// `blush_side` whose cosine is at least `blush_from` wear the scene's blush colour (2: none)
+    Vec3 blush_side{0, 0, 1};
+    double blush_from = 2;
 
     [[nodiscard]] bool round() const { return aspect == 1; }
     /// centre + (depth / radius) × (the spheroid's point for the unit direction d)
@@ -61,7 +65,12 @@ struct Scene {
     std::array<std::uint8_t, 3> wood_rgb{100, 80, 60};
     Vec3 canopy{1, 1, 1};  ///< half axes of the canopy ellipsoid
     std::array<std::uint8_t, 3> fruit_rgb{240, 165, 95};
+    std::array<std::uint8_t, 3> blush_rgb{185, 35, 45};
     std::uint32_t bunch_count = 0;
+
+    /// The colour of fruit `f` at point q: fruit_rgb, or blush_rgb on its blushed side.
+    [[nodiscard]] const std::array<std::uint8_t, 3>& fruit_colour(std::size_t f,
+                                                                  const Vec3& q) const;
 };
 
 /// Parameters of make_scene(). species() fills them for the paper's three datasets.
@@ -87,6 +96,12 @@ struct SceneParams {
     std::uint32_t branches = 0;
     double trunk_radius = 0.05;  ///< m; main branches start at half of it, twigs end at 4 mm
     std::array<std::uint8_t, 3> wood_rgb{100, 80, 60};  ///< bark (grey-brown)
+    /// Bicoloured fruit (a red blush over a yellow or green ground colour, as on Fuji and Gala
+    /// apples, peaches and mangoes): each fruit wears blush_rgb over a cap of its surface whose
+    /// share is uniform in [blush_min, blush_max], on a side of its own (0, 0: one colour; drawn
+    /// from a stream of their own, so that scenes without blush keep their bytes)
+    std::array<std::uint8_t, 3> blush_rgb{185, 35, 45};
+    double blush_min = 0, blush_max = 0;
     std::uint64_t seed = 1;
 
     void validate() const;  ///< throws pc::InvalidArgument naming the field
