@@ -61,6 +61,12 @@ def draw(rng, families, colours, ids, part, wood=False):
             args += f' --noise {noise}'
         if colour == 'mask':
             args += ' --colors mask'
+        elif isinstance(colours[colour][0], tuple):  # bicoloured: ground colour, blush
+            ground, blush = colours[colour]
+            args += (' --fruit-rgb ' + ','.join(map(str, ground)) + ' --blush-rgb ' +
+                     ','.join(map(str, blush)) + ' --blush-min 0.2 --blush-max 0.8')
+            if mode in SAMPLED:
+                args += f' --shading {shading}'
         else:
             args += ' --fruit-rgb ' + ','.join(map(str, colours[colour]))
             if mode in SAMPLED:
@@ -223,7 +229,11 @@ SHAPE_PARTS = [
 # snowberries and pale grapes are) (scored in session 35). 'held-out-23' (2541-2640, session 35,
 # before any method for it) adds medlar-like fruit (25 mm, oblate aspect 0.85, single or up to
 # three touching) of lavender (175,150,200: a pale violet of saturation 0.25, bluer than any
-# fruit so far, as some plums and grapes with bloom are).
+# fruit so far, as some plums and grapes with bloom are). 'held-out-24' (2641-2740, session 36,
+# before any method for it) adds grapefruit-like fruit (55 mm, aspect 0.95, single or up to three
+# touching: larger than any so far) and bicoloured fruit (pc_synth --blush-*: a red blush over
+# 20-80 % of each fruit, on a side of its own, over a yellow (205,195,95) or a yellow-green
+# (150,185,75: inside the leaves' hue band) ground colour, as Gala and Fuji apples are).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -255,6 +265,11 @@ WOOD_PARTS = [
      {'medlar': (0.025, '--species apple --fruit-radius 0.025 --bunch-min 1 --bunch-max 3 '
                         '--touch-gap 0.002 --fruit-count 80 --canopy 0.6,0.6,0.5')},
      {'lavender': (175, 150, 200)}, set()),
+    ('held-out-24', 2051,
+     {'grapefruit': (0.055, '--species apple --fruit-radius 0.055 --bunch-min 1 --bunch-max 3 '
+                            '--touch-gap 0.003 --fruit-count 40 --canopy 1.0,1.0,0.8')},
+     {'blush-yellow': ((205, 195, 95), (180, 40, 50)),
+      'blush-green': ((150, 185, 75), (175, 45, 55))}, set()),
 ]
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
@@ -263,6 +278,7 @@ ASPECTS['jujube'] = 1.3
 ASPECTS['hazelnut'] = 1.15
 ASPECTS['currant'] = 1.0
 ASPECTS['medlar'] = 0.85
+ASPECTS['grapefruit'] = 0.95
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)

@@ -640,13 +640,12 @@ ChainResult by_shape(io::Blob in,
     // counted on the input itself, not on a copy of it (a cloud of 1M points would peak at over
     // 4 times its size).
     const bool offered = c.classes.size() == 2 || !c.rule_classes.empty();
-    std::optional<io::Blob> greens, pale;
     const auto aside = [&](const std::optional<filters::ColourClass>& k) {
         return !offered && k ? std::optional(io::copy_points(in, colour_kept(in, k->rule)))
                              : std::nullopt;
     };
-    greens = aside(c.greens);
-    pale = aside(c.pale);
+    std::optional<io::Blob> greens = aside(c.greens);
+    const std::optional<io::Blob> pale = aside(c.pale);
     std::optional<ChainResult> by_rule;
     double rule_claimed = 0;
     if (c.rule_competes || !offered || !c.rule_classes.empty()) {
