@@ -705,9 +705,9 @@ ChainResult by_shape(io::Blob in,
         }
     }
     // Pale fruit (under the saturation line: cream, lavender): the rule kept the bark or the
-    // leaves. The pale points, where their centres claim as fruit's do and more than `than`; one
-    // of their own groups (the fruit beside dark ground) where it is claimed more.
-    const auto pale_fruit = [&](double than) -> std::optional<Kept> {
+    // leaves. The run of the pale points, where their centres claim as fruit's do and more than
+    // `than`; of one of their own groups (the fruit beside dark ground) where it is claimed more.
+    const auto pale_fruit = [&](double than) -> std::optional<ChainResult> {
         if (!c.pale || rule_claimed >= kFewClaimed) {
             return std::nullopt;
         }
@@ -718,15 +718,16 @@ ChainResult by_shape(io::Blob in,
         if (!(g >= kFruitClaims && g > than && r <= kLargestFruit * spread(run.labelled))) {
             return std::nullopt;
         }
-        if (g < kDoubtfulRule) {
-            if (auto finer = fruit_group(&c.pale->groups, g + kClaimsMore, nullptr, from)) {
-                return finer;
-            }
+        std::optional<Kept> kept =
+            g < kDoubtfulRule ? fruit_group(&c.pale->groups, g + kClaimsMore, nullptr, from)
+                              : std::nullopt;
+        if (!kept) {
+            kept.emplace(Kept{std::move(run),
+                              c.pale->reason + " (their fruit centres claim " + share(g) +
+                                  " of their points, " + share(rule_claimed) + " of the rule's)",
+                              &c.pale->rule});
         }
-        return Kept{std::move(run),
-                    c.pale->reason + " (their fruit centres claim " + share(g) +
-                        " of their points, " + share(rule_claimed) + " of the rule's)",
-                    &c.pale->rule};
+        return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
     };
     // Green fruit beside bark: the rule kept the bark (its centres claim few of its points) and
     // the greens form no two groups: the green points, where their centres claim more, and more
@@ -735,8 +736,8 @@ ChainResult by_shape(io::Blob in,
         ChainResult green = count_class(greens ? *greens : in, c.greens->rule);
         greens.reset();
         const double g = claims(green);
-        if (auto kept = pale_fruit(std::max(g, rule_claimed + kClaimsMore))) {
-            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
+        if (auto out = pale_fruit(std::max(g, rule_claimed + kClaimsMore))) {
+            return std::move(*out);
         }
         if (g > rule_claimed + kClaimsMore) {
             return done(std::move(green), &c.greens->rule,
@@ -745,8 +746,8 @@ ChainResult by_shape(io::Blob in,
                         {kBarkKept});
         }
     } else if (c.classes.size() != 2) {
-        if (auto kept = pale_fruit(rule_claimed + kClaimsMore)) {
-            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
+        if (auto out = pale_fruit(rule_claimed + kClaimsMore)) {
+            return std::move(*out);
         }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
@@ -776,8 +777,8 @@ ChainResult by_shape(io::Blob in,
         return done(std::move(finer->run), finer->colour, finer->rule);
     }
     if (!kept_best) {
-        if (auto kept = pale_fruit(std::max(claimed[0], claimed[1]) + kClaimsMore)) {
-            return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
+        if (auto out = pale_fruit(std::max(claimed[0], claimed[1]) + kClaimsMore)) {
+            return std::move(*out);
         }
     }
     if (kept_best) {

@@ -168,13 +168,8 @@ const std::array<std::uint8_t, 3>& Scene::fruit_colour(std::size_t f, const Vec3
     if (x.blush_from > 1) {
         return fruit_rgb;
     }
-    double along = 0, length2 = 0;
-    for (int a = 0; a < 3; ++a) {
-        const double d = q[a] - x.centre[a];
-        along += d * x.blush_side[a];
-        length2 += d * d;
-    }
-    return along >= x.blush_from * std::sqrt(length2) ? blush_rgb : fruit_rgb;
+    const Vec3 d = sub(q, x.centre);
+    return dot(d, x.blush_side) >= x.blush_from * std::sqrt(dot(d, d)) ? blush_rgb : fruit_rgb;
 }
 
 const std::vector<std::string>& species_names() {
