@@ -89,12 +89,34 @@ TEST(PcSynth, SpheroidFruitCarryTheirShapeInTheTruth) {
     EXPECT_FALSE(nlohmann::json::parse(slurp(dir.file("r.json")))["fruits"][0].contains("aspect"));
 }
 
+TEST(PcSynth, BlushedFruitCarryTheirShareInTheTruth) {
+    // --blush-* through a pipe: every fruit's blushed share within the range, the cloud's points
+    // as the truth counts them; one-coloured fruit have no blush key.
+    TempDir dir;
+    const RunResult r = run_shell("@pc_synth" + kSmall +
+                                  " --mode surface --blush-rgb 180,40,50 --blush-min 0.3 "
+                                  "--blush-max 0.6 --truth " +
+                                  dir.file("t.json") + " | @pc_info");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto truth = nlohmann::json::parse(slurp(dir.file("t.json")));
+    EXPECT_EQ(truth["points"], nlohmann::json::parse(r.out)["points"]);
+    for (const auto& f : truth["fruits"]) {
+        EXPECT_GE(f["blush"].get<double>(), 0.3 - 1e-9);
+        EXPECT_LE(f["blush"].get<double>(), 0.6 + 1e-9);
+    }
+    ASSERT_EQ(run_shell("@pc_synth" + kSmall + " --truth " + dir.file("r.json") + " -o " +
+                        dir.file("r.pcd"))
+                  .code,
+              0);
+    EXPECT_FALSE(nlohmann::json::parse(slurp(dir.file("r.json")))["fruits"][0].contains("blush"));
+}
+
 TEST(PcSynth, BadParametersAreUsageErrorsWithoutOutput) {
     TempDir dir;
     for (const std::string args :
          {" --fruit-radius -1", " --mode solid", " --species banana", " --fruit-rgb 300,0,0",
           " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1", " --aspect 5",
-          " --aspect-spread 1"}) {
+          " --aspect-spread 1", " --blush-rgb 300,0,0", " --blush-min 0.9 --blush-max 0.5"}) {
         const RunResult r = run_shell("@pc_synth" + args + " -o " + dir.file("x.pcd"));
         EXPECT_EQ(r.code, 2) << args << ": " << r.err;
         EXPECT_EQ(line_count(r.err), 1) << r.err;
