@@ -435,6 +435,41 @@ TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
     EXPECT_LT(without.peaks, 35u);
 }
 
+/// A branch with rounded ends: add_tube() closed by the outer halves of two spheres of its
+/// radius (points about one spacing apart; truth 0, DBSCAN cluster 50).
+void add_capsule(Scene& s, double x, double radius, int length) {
+    add_tube(s, x, radius, length);
+    Scene ends;
+    add_shells(ends, {{{x, 0, -0.5 * length}, radius}, {{x, 0, 0.5 * length - 1}, radius}}, 0, 50);
+    for (std::size_t i = 0; i < ends.cloud.size(); ++i) {
+        if (std::abs(ends.cloud[i].z) > 0.5 * length - 0.5) {
+            s.add({ends.cloud[i].x, ends.cloud[i].y, ends.cloud[i].z}, 0, 50);
+        }
+    }
+}
+
+TEST(SphereVote, TheRadiusMeasuredBesideABranchIsJudgedWhereTheBranchIsNot) {
+    // 35 fruit of radius 5 (11 000 points) beside a branch of radius 20 with rounded ends
+    // (30 000). R read from all points is the branch's; its centres, at the two ends, each take
+    // the end and a piece of the tube within reach: more points than all the fruit hold. Measured
+    // again without the points curved one way only, R is the fruit's; its centres claim fewer of
+    // all the points than the ends' did, but more of the points that are not the branch's side.
+    Scene s;
+    for (int copy = 0; copy < 5; ++copy) {
+        Scene h = hollow(5);
+        for (std::size_t i = 0; i < h.cloud.size(); ++i) {
+            s.add({h.cloud[i].x, h.cloud[i].y + 60.0 * copy, h.cloud[i].z},
+                  h.truth[i] + 7 * static_cast<std::uint32_t>(copy), h.label[i] + 10 * copy);
+        }
+    }
+    add_capsule(s, 100, 20, 200);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_NEAR(r.fruit_radius, 5, 0.5);
+    EXPECT_GE(r.peaks, 35u);
+    EXPECT_GT(r.larger_radius, 15) << "the first R was the branch's";
+    EXPECT_LT(r.claimed, 0.3) << "the fruit's centres claim under a third of the points";
+}
+
 TEST(SphereVote, SlicesThatDbscanCutApartShareTheirFruitsNormals) {
     // As DBSCAN leaves scan lines, or the sparse parts of an SfM fruit, when eps is under their
     // gaps: every slab 3 spacings wide a cluster of its own. A normal is the surface's, fitted to
