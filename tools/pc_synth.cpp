@@ -180,6 +180,9 @@ int main(int argc, char** argv) {
     tool.option(
         "shading", &rp.shading,
         "sampled modes: 0 flat colour .. 1 black where a surface faces away from the light");
+    tool.option("color-noise", &rp.color_noise,
+                "sampled modes and wood: sigma of a Gaussian added to each colour channel "
+                "(0..255), as colours vary between the views of SfM and NeRF");
     tool.option("scale", &rp.scale,
                 "units: written coordinates = metres x scale + offset (1000: millimetres)");
     tool.option("offset", &rp.offset, "units: added after --scale");

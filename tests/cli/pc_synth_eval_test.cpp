@@ -116,7 +116,8 @@ TEST(PcSynth, BadParametersAreUsageErrorsWithoutOutput) {
     for (const std::string args :
          {" --fruit-radius -1", " --mode solid", " --species banana", " --fruit-rgb 300,0,0",
           " --fruit-count 100000 --canopy 0.1,0.1,0.1", " --voxel 0.1", " --aspect 5",
-          " --aspect-spread 1", " --blush-rgb 300,0,0", " --blush-min 0.9 --blush-max 0.5"}) {
+          " --aspect-spread 1", " --blush-rgb 300,0,0", " --blush-min 0.9 --blush-max 0.5",
+          " --color-noise -5", " --color-noise 300"}) {
         const RunResult r = run_shell("@pc_synth" + args + " -o " + dir.file("x.pcd"));
         EXPECT_EQ(r.code, 2) << args << ": " << r.err;
         EXPECT_EQ(line_count(r.err), 1) << r.err;

@@ -329,6 +329,7 @@ void RenderParams::validate() const {
     require(duplicates >= 0 && duplicates <= 1, "duplicates must be in [0, 1]");
     require(density_spread >= 0 && density_spread <= 3, "density_spread must be in [0, 3]");
     require(shading >= 0 && shading <= 1, "shading must be in [0, 1]");
+    require(color_noise >= 0 && color_noise <= 255, "color_noise must be in [0, 255]");
     require(scale > 0 && std::isfinite(scale) && scale <= 1e6, "scale must be in (0, 1e6]");
     for (double o : offset) {
         require(std::isfinite(o) && std::abs(o) <= 1e6, "offset must be finite, |offset| <= 1e6");

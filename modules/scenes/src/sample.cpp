@@ -25,7 +25,7 @@ std::uint64_t poisson(double mean, Rng& rng) {
 class Sampler {
 public:
     Sampler(const Scene& s, const RenderParams& p, Rng& rng, Rendered& out)
-        : s_(s), p_(p), rng_(rng), paint_(p, rng), out_(out), members_(s.bunch_count) {
+        : s_(s), p_(p), rng_(rng), paint_(p, rng, 7), out_(out), members_(s.bunch_count) {
         for (std::size_t f = 0; f < s.fruits.size(); ++f) {
             members_[s.fruits[f].bunch].push_back(static_cast<std::uint32_t>(f));
         }

@@ -25,7 +25,7 @@ void add_wood(const Scene& s, const RenderParams& p, Rendered& out) {
     for (std::size_t f = 0; f < s.fruits.size(); ++f) {
         fruit.add(s.fruits[f].centre, static_cast<std::uint32_t>(f));
     }
-    Painter paint(p, rng);
+    Painter paint(p, rng, 8);
     std::unordered_set<std::uint64_t> taken;  // lattice: one point per voxel
     for (const Branch& b : s.branches) {
         if (rng.uniform() >= p.wood_leak) {

@@ -265,6 +265,46 @@ TEST(Sampled, BlushedFruitWearTheBlushOverTheirShareOfTheSurface) {
     EXPECT_THROW((void)make_scene(sp), InvalidArgument);
 }
 
+TEST(Sampled, ColourNoiseSpreadsEachChannelBySigmaAndMovesNoPoint) {
+    // N(0, color_noise) per channel from streams of their own: the same points, and each
+    // channel's difference to the scene without it spreads by sigma (the colours sit mid-range,
+    // clear of the clamping at 0 and 255 within 3 sigma: brown bark and a pale orange fruit).
+    SceneParams sp = species("peach");
+    sp.fruit_count = 20;
+    sp.canopy = {0.5, 0.5, 0.5};
+    sp.fruit_rgb = {160, 130, 110};
+    sp.branches = 3;
+    sp.wood_rgb = {120, 100, 90};
+    const Scene s = make_scene(sp);
+    RenderParams p = bare(Mode::kSfm, 0.004);
+    p.shading = 0.2;
+    const Rendered plain = render(s, p);
+    p.color_noise = 15;
+    const Rendered noisy = render(s, p);
+    ASSERT_EQ(noisy.xyz, plain.xyz);
+    ASSERT_EQ(noisy.gt, plain.gt);
+    for (const bool fruit : {true, false}) {
+        double n = 0, sum = 0, sum2 = 0;
+        for (std::size_t k = 0; k < plain.xyz.size(); ++k) {
+            if ((plain.gt[k] != 0) != fruit) {
+                continue;
+            }
+            for (int shift : {16, 8, 0}) {
+                const double d = static_cast<double>((noisy.rgb[k] >> shift) & 255) -
+                                 static_cast<double>((plain.rgb[k] >> shift) & 255);
+                n += 1;
+                sum += d;
+                sum2 += d * d;
+            }
+        }
+        ASSERT_GT(n, 3000) << fruit;
+        EXPECT_NEAR(sum / n, 0, 0.5) << fruit;
+        EXPECT_NEAR(std::sqrt(sum2 / n), 15, 0.5) << fruit;  // rounding adds 1/12 in variance
+    }
+    p.color_noise = -1;
+    EXPECT_THROW((void)render(s, p), InvalidArgument);
+}
+
 TEST(Sampled, ScaleAndOffsetMoveEveryPointAndNothingElse) {
     const Scene s = one_fruit();
     RenderParams p = bare(Mode::kSfm);

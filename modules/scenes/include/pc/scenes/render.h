@@ -64,6 +64,10 @@ struct RenderParams {
     double duplicates = 0.1;  ///< sfm: fraction of points written twice, exactly
     double density_spread = 0.5;  ///< sfm: σ of each fruit's log density
     double shading = 0;  ///< brightness 1 - shading × (1 - max(0, normal · light)); 0 = flat
+    /// σ of a Gaussian added to each channel (0..255 levels) of the sampled modes' fruit and
+    /// leaves and of the wood, natural colours: SfM and NeRF colours vary between the views a
+    /// point was seen from (drawn from streams of their own: 0 keeps every scene's bytes)
+    double color_noise = 0;
     Colors colors = Colors::kNatural;
     // units (every mode): written coordinates = metres × scale + offset
     double scale = 1;
