@@ -28,6 +28,7 @@ MODES = ['explicit', 'implicit', 'degraded', 'surface', 'sfm', 'stripes', 'volum
 SOLID = {'explicit', 'degraded', 'volume'}       # points fill the fruit: radius <= 8 spacings
 R_OVER_S = [2, 3, 5, 8, 12, 20]
 NOISE = [0, 0.03, 0.1]                           # sigma / radius, sampled modes
+COLOR_NOISE = [0, 12, 25]                        # sigma, 0..255 levels (held-out-25 on)
 COLOURS = {'mask': None, 'red': (190, 35, 40), 'purple': (75, 30, 65), 'orange': (235, 140, 45),
            'yellow': (225, 200, 70), 'green': (125, 175, 60)}
 UNITS = {'m': '', 'mm': '--scale 1000', 'normalised': '--scale 0.45 --offset 0.1,-0.05,0.2'}
@@ -41,11 +42,13 @@ BARK = {'grey-brown': (110, 100, 90), 'brown': (100, 75, 50), 'red-brown': (120,
         'dark-bark': (60, 50, 45)}
 
 
-def draw(rng, families, colours, ids, part, wood=False):
+def draw(rng, families, colours, ids, part, wood=False, color_noise=False):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
-    masks leak some wood, as they leak leaves), sampled modes all of them."""
+    masks leak some wood, as they leak leaves), sampled modes all of them.
+    color_noise: each scene's natural colours get N(0, sigma) per channel, sigma 0, 12 or 25
+    (drawn last: SfM and NeRF colours are blended from the views that saw a point)."""
     for i in ids:
         family = rng.choice(list(families))
         mode = rng.choice(MODES)
@@ -79,6 +82,10 @@ def draw(rng, families, colours, ids, part, wood=False):
                      f' --wood-rgb {",".join(map(str, BARK[bark]))}')
             if mode not in SAMPLED:
                 args += ' --wood-leak 0.2'
+        if color_noise:
+            sigma = rng.choice(COLOR_NOISE)
+            if sigma and colour != 'mask':
+                args += f' --color-noise {sigma}'
         yield f'{i:03d}|{part(family, colour, mode)}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}'
 
 
@@ -234,6 +241,11 @@ SHAPE_PARTS = [
 # touching: larger than any so far) and bicoloured fruit (pc_synth --blush-*: a red blush over
 # 20-80 % of each fruit, on a side of its own, over a yellow (205,195,95) or a yellow-green
 # (150,185,75: inside the leaves' hue band) ground colour, as Gala and Fuji apples are).
+# 'held-out-25' (2741-2840, session 37, after held-out-24 was scored, before any method for it)
+# adds kumquat-like fruit (14 mm, aspect 1.25, single or up to four touching) of tangerine
+# (245,105,25: a deep orange between the orange and the red fruit), and colour noise: each
+# scene's natural colours get N(0, sigma) per channel, sigma 0, 12 or 25 (pc_synth
+# --color-noise; SfM and NeRF colours are blended from the views that saw a point).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -270,7 +282,12 @@ WOOD_PARTS = [
                             '--touch-gap 0.003 --fruit-count 40 --canopy 1.0,1.0,0.8')},
      {'blush-yellow': ((205, 195, 95), (180, 40, 50)),
       'blush-green': ((150, 185, 75), (175, 45, 55))}, set()),
+    ('held-out-25', 2052,
+     {'kumquat': (0.014, '--species plum --fruit-radius 0.014 --bunch-min 1 --bunch-max 4 '
+                         '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')},
+     {'tangerine': (245, 105, 25)}, set()),
 ]
+COLOUR_NOISE_PARTS = {'held-out-25'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -279,6 +296,7 @@ ASPECTS['hazelnut'] = 1.15
 ASPECTS['currant'] = 1.0
 ASPECTS['medlar'] = 0.85
 ASPECTS['grapefruit'] = 0.95
+ASPECTS['kumquat'] = 1.25
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
@@ -287,7 +305,8 @@ for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     palette = {c: rgb for c, rgb in colours.items() if c not in left_out}
     lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
                   lambda family, colour, mode, part=part: part,
-                  wood=part in {w[0] for w in WOOD_PARTS})
+                  wood=part in {w[0] for w in WOOD_PARTS},
+                  color_noise=part in COLOUR_NOISE_PARTS)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
