@@ -111,6 +111,10 @@ inline std::vector<CorpusFile> malformed_corpus() {
         {"compressed_zero_csize", xyz_header("1", "binary_compressed") + u32(0) + u32(12)},
         {"ply_vertex_count_too_big",
          ply_header("binary_little_endian", "3", xyz_props) + floats({1, 2, 3, 4, 5, 6})},
+        {"ply_vertices_after_an_element_truncated",
+         "ply\nformat binary_little_endian 1.0\nelement extra 2\nproperty float a\nelement vertex "
+         "2\n" +
+             xyz_props + "end_header\n" + floats({9, 9, 1, 2, 3, 4})},
         {"ply_vertex_count_too_small",
          ply_header("binary_little_endian", "1", xyz_props) + floats({1, 2, 3, 4, 5, 6})},
         {"ply_unknown_type", ply_header("binary_little_endian", "1",

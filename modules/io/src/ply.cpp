@@ -370,6 +370,14 @@ void read_binary_body(const Header& h,
             pos = skip_binary(e, bytes, pos, swap);
             continue;
         }
+        // parse_ply() bounded the rows by the bytes after the header; the elements before the
+        // vertices take some of them
+        if (checked_mul(n, v.row_bytes, "PLY vertex data") > bytes.size() - pos) {
+            throw IoError("truncated PLY body: " + std::to_string(n) + " vertices x " +
+                          std::to_string(v.row_bytes) + " B, " +
+                          std::to_string(bytes.size() - pos) +
+                          " B present after the elements before them");
+        }
         for (std::uint64_t i = 0; i < n; ++i) {
             std::uint8_t* dst = out + i * v.point_step;
             for (std::size_t k = 0; k < e.props.size(); ++k) {

@@ -102,6 +102,26 @@ TEST(Ply, BinaryFacesAfterVerticesAreWalked) {
     EXPECT_THROW((void)parse_ply(s.substr(0, s.size() - 1)), IoError);
 }
 
+TEST(Ply, VerticesAfterAnotherElementAreBoundedByTheBytesLeft) {
+    // The body holds as many bytes as the vertices alone need (the first bound), but an element
+    // before them takes some: the vertex rows would be read past the end (a fuzzer's find,
+    // caught by AddressSanitizer).
+    const std::string header =
+        "ply\nformat binary_little_endian 1.0\nelement extra 2\nproperty float a\n"
+        "element vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
+        "end_header\n";
+    const std::string whole = header + test::floats({9, 9, 1, 2, 3, 4, 5, 6});
+    const Blob b = parse_ply(whole).blob;
+    ASSERT_EQ(b.size(), 2u);
+    EXPECT_EQ(get<float>(b, 1, "z"), 6.0f);
+    try {
+        (void)parse_ply(header + test::floats({9, 9, 1, 2, 3, 4}));
+        ADD_FAILURE() << "a truncated body was read";
+    } catch (const IoError& e) {
+        EXPECT_NE(std::string(e.what()).find("truncated"), std::string::npos) << e.what();
+    }
+}
+
 TEST(Ply, GaussianSplattingKeepsAllAttributesAndDerivesColour) {
     std::vector<std::string> names = {"x",  "y",      "z",      "nx",    "ny",
                                       "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
