@@ -250,6 +250,34 @@ void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_
     cloud.row_step = static_cast<std::uint32_t>(new_step * cloud.width);
 }
 
+void remove_field(Blob& blob, const std::string& name) {
+    auto& cloud = blob.cloud;
+    const auto it = std::find_if(cloud.fields.begin(), cloud.fields.end(),
+                                 [&](const Field& f) { return f.name == name; });
+    if (it == cloud.fields.end()) {
+        return;
+    }
+    const std::size_t at = it->offset;
+    const std::size_t width = type_size(it->datatype) * std::max<std::uint32_t>(it->count, 1);
+    cloud.fields.erase(it);
+    const std::size_t n = blob.size(), old_step = cloud.point_step, new_step = old_step - width;
+    // Front to back: each row moves to a lower offset, over rows already moved.
+    std::uint8_t* data = cloud.data.data();
+    for (std::size_t i = 0; i < n; ++i) {
+        std::memmove(data + i * new_step, data + i * old_step, at);
+        std::memmove(data + i * new_step + at, data + i * old_step + at + width,
+                     old_step - at - width);
+    }
+    cloud.data.resize(n * new_step);
+    for (Field& f : cloud.fields) {
+        if (f.offset > at) {
+            f.offset -= static_cast<std::uint32_t>(width);
+        }
+    }
+    cloud.point_step = static_cast<std::uint32_t>(new_step);
+    cloud.row_step = static_cast<std::uint32_t>(new_step * cloud.width);
+}
+
 void update_is_dense(Blob& blob) {
     // Every F4 / F8 element, point by point in one pass over the data: an element is not
     // finite when its exponent bits are all ones (Inf or NaN).

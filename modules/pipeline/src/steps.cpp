@@ -6,6 +6,7 @@
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
+#include <pc/filters/color_smooth.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
 #include <pc/pipeline/steps.h>
@@ -75,11 +76,32 @@ Step colour_step(io::Blob kept, std::size_t in, const filters::ColorFilterParams
                            "--no-color");
 }
 
+/// The field that carries the colours the colour decisions read, where they are not the cloud's
+/// own (ChainParams::color_smooth); run_chain() removes it before it returns.
+constexpr const char* kDecisionRgb = "pc_decision_rgb";
+
+/// The colours the colour step decides on: those of kDecisionRgb where the chain set it, else
+/// the cloud's (io::colours(), which rejects a non-empty cloud without colour).
+std::vector<io::Rgb> decision_colours(const io::Blob& in) {
+    if (io::find_field(in, kDecisionRgb) == nullptr) {
+        return io::colours(in);
+    }
+    const std::vector<std::uint32_t> packed = io::labels(in, kDecisionRgb);
+    std::vector<io::Rgb> out(packed.size());
+    for (std::size_t i = 0; i < packed.size(); ++i) {
+        const auto channel = [&](int shift) {
+            return static_cast<float>((packed[i] >> shift) & 255u) / 255.0f;
+        };
+        out[i] = {channel(16), channel(8), channel(0)};
+    }
+    return out;
+}
+
 /// The points of `in` that rule `p` keeps.
 Indices colour_kept(const io::Blob& in, const filters::ColorFilterParams& p) {
     p.validate();
-    // io::colours() rejects a non-empty cloud without colour; an empty one passes through.
-    return in.size() == 0 ? Indices{} : filters::color_filter(io::colours(in), p).kept;
+    // an empty cloud passes through
+    return in.size() == 0 ? Indices{} : filters::color_filter(decision_colours(in), p).kept;
 }
 
 }  // namespace
@@ -103,7 +125,7 @@ filters::FruitColorChoice choose_fruit_color(const io::Blob& in,
         const std::string why = in.size() == 0 ? "an empty cloud" : "no colour fields";
         return {std::nullopt, "auto: " + why + ": no colour rule", {}, {}};
     }
-    return filters::choose_fruit_color(io::colours(in), p);
+    return filters::choose_fruit_color(decision_colours(in), p);
 }
 
 Step apply_choice(io::Blob in, filters::FruitColorChoice c) {
@@ -561,6 +583,26 @@ ChainResult chain_after(Step colour, const ChainParams& p, const Progress& progr
 }  // namespace
 
 ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
+    // Colour decisions on each point's neighbourhood colour (filters::smooth_colors), carried
+    // through the steps beside the cloud's own colours, which pass through untouched.
+    if (p.color_smooth && (p.color || p.fruit_color) && in.size() > 0 &&
+        !io::colour_fields(in).empty()) {
+        const std::vector<io::Rgb> smooth =
+            filters::smooth_colors(io::XyzPoints(in).view(), io::colours(in), *p.color_smooth);
+        std::vector<std::uint32_t> packed(smooth.size());
+        for (std::size_t i = 0; i < smooth.size(); ++i) {
+            const auto q = [](float v) {
+                return static_cast<std::uint32_t>(std::clamp(std::lround(v * 255.0f), 0L, 255L));
+            };
+            packed[i] = (q(smooth[i].r) << 16) | (q(smooth[i].g) << 8) | q(smooth[i].b);
+        }
+        io::set_field(in, kDecisionRgb, packed);
+        ChainParams decided = p;
+        decided.color_smooth.reset();
+        ChainResult out = run_chain(std::move(in), decided, progress);
+        io::remove_field(out.labelled, kDecisionRgb);
+        return out;
+    }
     if (p.color) {
         return chain_after(apply_color_filter(std::move(in), *p.color), p, progress);
     }

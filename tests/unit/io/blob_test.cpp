@@ -118,6 +118,33 @@ TEST(Blob, SetFieldAppendsThenOverwritesInPlace) {
     EXPECT_THROW(set_field(b, "label", std::span(a).first(3)), Error);
 }
 
+TEST(Blob, RemoveFieldUndoesSetFieldAndClosesAGapInTheMiddle) {
+    Blob b =
+        test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}, {"w", F::FLOAT64}}, 5, 1,
+                        [](std::size_t i, std::size_t k, std::uint32_t) { return i * 10.0 + k; });
+    const Blob original = b;
+    set_field(b, "tmp", std::vector<std::uint32_t>{1, 2, 3, 4, 5});
+    remove_field(b, "tmp");
+    EXPECT_EQ(b.cloud.data, original.cloud.data);  // set then removed: the same bytes
+    EXPECT_EQ(b.cloud.point_step, original.cloud.point_step);
+    EXPECT_EQ(b.cloud.fields.size(), original.cloud.fields.size());
+    remove_field(b, "absent");  // nothing to do
+    EXPECT_EQ(b.cloud.data, original.cloud.data);
+    remove_field(b, "id");  // from the middle: w moves down over it
+    ASSERT_EQ(b.cloud.fields.size(), 2u);
+    const auto* w = find_field(b, "w");
+    ASSERT_NE(w, nullptr);
+    EXPECT_EQ(b.cloud.point_step, original.cloud.point_step - 2);
+    EXPECT_EQ(b.cloud.row_step, 5 * b.cloud.point_step);
+    EXPECT_EQ(b.cloud.data.size(), 5u * b.cloud.point_step);
+    check_layout(b);
+    for (std::size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(value_as_double(&b.cloud.data[i * b.cloud.point_step + w->offset], w->datatype),
+                  i * 10.0 + 2);
+        EXPECT_EQ(value_as_double(&b.cloud.data[i * b.cloud.point_step], F::FLOAT32), i * 10.0);
+    }
+}
+
 TEST(Blob, SetFieldGrowsWithinTheRoomReservedByTheReaders) {
     Blob b = test::random_xyz(1000);
     std::vector<std::uint8_t> exact = b.cloud.data;  // a vector with no spare room

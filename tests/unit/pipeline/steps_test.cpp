@@ -184,6 +184,31 @@ TEST(Steps, ThinLabelledPointsAreSplitAndSpacedInPlaceWithTheSameResults) {
     EXPECT_EQ(*std::max_element(clusters.begin(), clusters.end()), 3u);
 }
 
+TEST(Steps, SmoothedColoursDecideAndTheCloudsOwnColoursPassThrough) {
+    // Every tenth point of a bright line is dark (a point whose colour came out wrong): the
+    // rule (mean > 0.5) drops those 10 on their own colour; on the median of their own and their
+    // 8 nearest neighbours' it keeps them, and the output still carries each point's colour.
+    io::Blob in = line_cloud(100);
+    for (std::size_t i = 0; i < 100; ++i) {
+        test::set_bits(in, i, 4, i % 10 == 5 ? 0x101010u : 0xE0E0E0u);
+    }
+    ChainParams p;
+    p.color = filters::ColorFilterParams{.min_mean = 0.5};
+    p.dbscan.eps = 0.05;
+    EXPECT_EQ(run_chain(in, p).labelled.size(), 90u);
+    p.color_smooth = filters::ColorSmoothParams{};
+    const ChainResult r = run_chain(in, p);
+    ASSERT_EQ(r.labelled.size(), 100u);
+    ASSERT_EQ(r.labelled.cloud.fields.size(), in.cloud.fields.size() + 1);  // + label
+    EXPECT_EQ(io::find_field(r.labelled, "pc_decision_rgb"), nullptr);
+    EXPECT_EQ(r.labelled.cloud.point_step, in.cloud.point_step + 4);
+    for (std::size_t i = 0; i < 100; ++i) {  // every byte of the input's fields, in order
+        ASSERT_EQ(0, std::memcmp(&r.labelled.cloud.data[i * r.labelled.cloud.point_step],
+                                 &in.cloud.data[i * in.cloud.point_step], in.cloud.point_step))
+            << i;
+    }
+}
+
 TEST(Steps, EmptyCloudFlowsThroughTheWholeChain) {
     const ChainResult r = run_chain(line_cloud(0), preset("paper-dense"));
     EXPECT_EQ(r.labelled.size(), 0u);

@@ -410,12 +410,8 @@ TEST(SphereVote, ABranchOfTheFruitsRadiusGetsNoCentres) {
     }
 }
 
-TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
-    // A tree's wood beside small fruit: a tube of radius 20 (300 long, one spacing between
-    // points: 37 800 of them), a ball of its radius (5000 points) and 35 fruit of radius 5
-    // (11 000). The normal lines of the tube meet on its axis at 20, so R read from all points is
-    // the tube's, and its one centre (the ball's) claims few points; measured again without the
-    // points curved one way only (the tube's side), R is the small fruit's.
+/// 35 fruit of radius 5 (11 000 points): five copies of hollow(5), 60 apart along y.
+Scene small_fruit() {
     Scene s;
     for (int copy = 0; copy < 5; ++copy) {
         Scene h = hollow(5);
@@ -424,6 +420,16 @@ TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
                   h.truth[i] + 7 * static_cast<std::uint32_t>(copy), h.label[i] + 10 * copy);
         }
     }
+    return s;
+}
+
+TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
+    // A tree's wood beside small fruit: a tube of radius 20 (300 long, one spacing between
+    // points: 37 800 of them), a ball of its radius (5000 points) and 35 fruit of radius 5
+    // (11 000). The normal lines of the tube meet on its axis at 20, so R read from all points is
+    // the tube's, and its one centre (the ball's) claims few points; measured again without the
+    // points curved one way only (the tube's side), R is the small fruit's.
+    Scene s = small_fruit();
     add_shells(s, {{{-100, 0, 0}, 20}}, 100, 100);
     add_tube(s, 100, 20, 300);
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
@@ -454,14 +460,7 @@ TEST(SphereVote, TheRadiusMeasuredBesideABranchIsJudgedWhereTheBranchIsNot) {
     // the end and a piece of the tube within reach: more points than all the fruit hold. Measured
     // again without the points curved one way only, R is the fruit's; its centres claim fewer of
     // all the points than the ends' did, but more of the points that are not the branch's side.
-    Scene s;
-    for (int copy = 0; copy < 5; ++copy) {
-        Scene h = hollow(5);
-        for (std::size_t i = 0; i < h.cloud.size(); ++i) {
-            s.add({h.cloud[i].x, h.cloud[i].y + 60.0 * copy, h.cloud[i].z},
-                  h.truth[i] + 7 * static_cast<std::uint32_t>(copy), h.label[i] + 10 * copy);
-        }
-    }
+    Scene s = small_fruit();
     add_capsule(s, 100, 20, 200);
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
     EXPECT_NEAR(r.fruit_radius, 5, 0.5);

@@ -67,6 +67,10 @@ void keep_flagged(Blob& blob, std::span<const std::uint8_t> flags, bool keep_set
 /// field list) and the data grows within its capacity when there is room (see reserve_points).
 void set_field(Blob& blob, const std::string& name, std::span<const std::uint32_t> values);
 
+/// Removes field `name` (when present) from every point, in place: each point's other bytes move
+/// down over it, and the fields after it with them. No copy of the cloud.
+void remove_field(Blob& blob, const std::string& name);
+
 /// Recomputes cloud.is_dense as PCL does: true iff every F4/F8 element of every point is finite.
 void update_is_dense(Blob& blob);
 

@@ -8,6 +8,7 @@
 
 #include <pc/core/error.h>
 #include <pc/filters/color_filter.h>
+#include <pc/filters/color_smooth.h>
 #include <pc/filters/crop.h>
 #include <pc/filters/fruit_color.h>
 #include <pc/filters/knn_outlier.h>
@@ -36,6 +37,10 @@ void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsR
 struct ChainParams {
     std::optional<filters::ColorFilterParams> color;       ///< a fixed colour rule; when empty,
     std::optional<filters::FruitColorParams> fruit_color;  ///< a rule chosen from the cloud
+    /// when set, the colour rule (fixed or chosen) reads each point's neighbourhood colour
+    /// (filters::smooth_colors: SfM and NeRF colours vary from point to point); the output keeps
+    /// the cloud's own colours
+    std::optional<filters::ColorSmoothParams> color_smooth;
     std::optional<filters::CropParams> crop;
     std::optional<filters::VoxelParams> voxel;
     std::optional<filters::KnnOutlierParams> knn;
