@@ -1,4 +1,5 @@
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include <gtest/gtest.h>
@@ -44,6 +45,14 @@ TEST(PcGroupby, AFilePerClusterWithAnIndexThatAddsUp) {
     EXPECT_EQ(total + static_cast<int>(report["noise_points"]), points(dir.file("l.pcd")));
     // The whole cloud, marked: every input point, the same clusters as --cloud.
     EXPECT_EQ(points(dir.file("all.pcd")), points(kSample));
+    // The labelled cloud carries the input's fields and the label, nothing of the index that
+    // --cloud-all followed the points with (once a `_` padding field where it had been).
+    std::ifstream header(dir.file("l.pcd"));
+    std::string fields;
+    while (std::getline(header, fields) && fields.rfind("FIELDS", 0) != 0) {
+    }
+    EXPECT_EQ(fields.find(" _"), std::string::npos) << fields;
+    EXPECT_NE(fields.find(" label"), std::string::npos) << fields;
     const RunResult again = run_shell("@pc_groupby -i " + dir.file("all.pcd") + " --pattern " +
                                       dir.path + "/again/f_#.pcd");
     // The same rows but for the folder in the file names.

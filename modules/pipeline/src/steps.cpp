@@ -865,10 +865,7 @@ MarkedChain run_chain_marked(io::Blob in,
             labels[source[j]] = label[j];
         }
     }
-    auto& fields = labelled.cloud.fields;
-    fields.erase(std::remove_if(fields.begin(), fields.end(),
-                                [&](const pcl::PCLPointField& f) { return f.name == kSource; }),
-                 fields.end());
+    io::remove_field(labelled, kSource);  // its bytes too: no `_` padding in the labelled cloud
     io::set_field(out.marked, "label", labels);
     return out;
 }
