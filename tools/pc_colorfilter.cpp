@@ -10,7 +10,9 @@ namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
     pc::tools::ColorOptions color;
-    color.word = pc::filters::FruitColorParams{};  // by default the rule is chosen from the cloud
+    // by default the rule is chosen from the cloud, on neighbourhood colours where they are noisy
+    color.word = pc::filters::FruitColorParams{};
+    color.smooth = pc::filters::ColorSmoothParams{.min_noise = pc::filters::kNoisyColours};
     pc::cli::Tool tool("pc_colorfilter", "keep points by colour (rgb/rgba or red green blue)");
     pc::tools::bind_color_options(tool, color, "");
     tool.presets(pl::preset_names(),
@@ -21,8 +23,7 @@ int main(int argc, char** argv) {
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pl::ChainParams chain;
         color.apply(chain);
-        pc::tools::write_step(io, chain.color
-                                      ? pl::apply_color_filter(io.read(), *chain.color)
-                                      : pl::apply_fruit_color(io.read(), *chain.fruit_color));
+        pc::tools::write_step(
+            io, pl::apply_colour(io.read(), chain, [&](const std::string& n) { io.note(n); }));
     });
 }

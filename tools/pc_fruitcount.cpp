@@ -38,7 +38,6 @@ int main(int argc, char** argv) {
     seg::RecursiveSplitParams split = *chain.split;
     bool no_color = false, no_knn = false, no_split = false;
     std::optional<double> gt;
-    std::uint32_t color_smooth = 0;
     bool eps_check = false;
     bool no_eps_check = false;
     std::string cloud_out, cloud_all, plot;
@@ -58,10 +57,6 @@ int main(int argc, char** argv) {
     });
     pc::tools::bind_color_options(tool, color, "colour: ");
     tool.flag("no-color", &no_color, "skip the colour filter");
-    tool.option("color-smooth", &color_smooth,
-                "colour: the rule reads each point's colour as the median of its own and its K "
-                "nearest neighbours' (SfM and NeRF colours vary from point to point); the output "
-                "keeps the cloud's colours; 0: off");
     tool.option(
         "crop-min", "off",
         [&](const std::string& s) {
@@ -149,10 +144,6 @@ int main(int argc, char** argv) {
     tool.epilog("\nSee docs/tools/pc_fruitcount.md for the presets and the steps.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         color.apply(chain);
-        if (color_smooth > 0) {
-            chain.color_smooth = pc::filters::ColorSmoothParams{color_smooth};
-            chain.color_smooth->validate();
-        }
         if (no_color) {
             chain.color.reset();
             chain.fruit_color.reset();

@@ -225,6 +225,54 @@ TEST(PcFruitcount, ColourWordsRulesAndAGivenRadiusReachTheirSteps) {
     EXPECT_EQ(g["count"], sample_fruit_count());
 }
 
+TEST(PcFruitcount, ColourSmoothingFollowsTheColoursNoise) {
+    // The same 40 plums sampled as SfM, their colours clean (pc_synth's ±8) and with N(0, 25) a
+    // channel added: under `auto` the colour rule reads neighbourhood medians on the noisy cloud
+    // only; the colour step's record says the noise it read and the neighbours it took (0: none).
+    TempDir dir;
+    const std::string scene =
+        "@pc_synth --species plum --fruit-count 40 --canopy 0.4,0.4,0.3 --mode sfm";
+    ASSERT_EQ(run_shell(scene + " -o " + dir.file("clean.pcd")).code, 0);
+    const auto colour_step = [&](const std::string& cmd, int count = 40) {
+        const RunResult r = run_shell(cmd);
+        EXPECT_EQ(r.code, 0) << cmd << ": " << r.err;
+        const auto j = nlohmann::json::parse(r.out);
+        EXPECT_EQ(j["count"], count) << cmd;
+        EXPECT_EQ(j["steps"][0]["step"], "color_filter");
+        return j["steps"][0];
+    };
+    const auto noisy = colour_step(scene + " --color-noise 25 | @pc_fruitcount");
+    EXPECT_GT(noisy["color_noise"].get<double>(), 20);
+    EXPECT_EQ(noisy["color_smooth"], 8);
+    const auto clean = colour_step("@pc_fruitcount -i " + dir.file("clean.pcd"));
+    EXPECT_LT(clean["color_noise"].get<double>(), 10);
+    EXPECT_EQ(clean["color_smooth"], 0);
+    EXPECT_EQ(
+        colour_step("@pc_fruitcount --color-smooth 4 -i " + dir.file("clean.pcd"))["color_smooth"],
+        4);
+    EXPECT_FALSE(colour_step("@pc_fruitcount --color-smooth off -i " + dir.file("clean.pcd"))
+                     .contains("color_smooth"));
+    // the paper's presets read each point's own colour (and count 12 here: their eps is for
+    // another cloud)
+    EXPECT_FALSE(colour_step("@pc_fruitcount --preset paper-dense --fruit-color auto -i " +
+                                 dir.file("clean.pcd"),
+                             12)
+                     .contains("color_smooth"));
+    // pc_colorfilter decides as pc_fruitcount does: the same points
+    const RunResult kept = run_shell(scene + " --color-noise 25 | @pc_colorfilter | @pc_info");
+    ASSERT_EQ(kept.code, 0) << kept.err;
+    EXPECT_EQ(nlohmann::json::parse(kept.out)["points"], noisy["points_out"]);
+    const RunResult v = run_shell("@pc_fruitcount -v -i " + dir.file("clean.pcd"));
+    EXPECT_NE(v.err.find("color_smooth: colour noise "), std::string::npos) << v.err;
+    for (const std::string bad : {"0.5", "65", "-1", "eight"}) {
+        const RunResult r =
+            run_shell("@pc_fruitcount --color-smooth " + bad + " -i " + dir.file("clean.pcd"));
+        EXPECT_EQ(r.code, 2) << bad;
+        EXPECT_EQ(line_count(r.err), 1) << r.err;
+        EXPECT_NE(r.err.find("--color-smooth"), std::string::npos) << r.err;
+    }
+}
+
 TEST(PcFruitcount, EpsCheckWarnsWhenTheCountSwingsWithEps) {
     // The author script's eps 0.0065 sits below this sample's ~7 mm spacing: at 0.8x every fruit
     // falls apart into noise, at 1.25x they hold together. The default's lengths come from the

@@ -97,6 +97,57 @@ std::vector<io::Rgb> decision_colours(const io::Blob& in) {
     return out;
 }
 
+/// What smooth_decisions() did, for the colour step's record.
+struct Smoothing {
+    double noise = 0;     ///< the colours' noise read (0..1)
+    std::uint32_t k = 0;  ///< the neighbours the colour rule's colours are medians over; 0: none
+
+    /// Removes the decision colours from the colour step's (or the chain's) output and records
+    /// the noise and k in the colour step's record.
+    void finish(io::Blob& out, StepRecord& colour) const {
+        if (k > 0) {
+            io::remove_field(out, kDecisionRgb);
+        }
+        colour.values.insert(colour.values.end(),
+                             {{"color_noise", 255 * noise}, {"color_smooth", k}});
+    }
+};
+
+/// Where `p` has a colour step and smoothing (ChainParams::color_smooth) and `in` has colours:
+/// reads their noise (filters::smooth_colors) and, where they are noisy, sets kDecisionRgb to
+/// each point's neighbourhood median colour; says so to `progress`.
+std::optional<Smoothing> smooth_decisions(io::Blob& in,
+                                          const ChainParams& p,
+                                          const std::function<void(const std::string&)>& progress) {
+    if (!p.color_smooth || !(p.color || p.fruit_color) || in.size() == 0 ||
+        io::colour_fields(in).empty()) {
+        return std::nullopt;
+    }
+    const filters::SmoothedColors smooth =
+        filters::smooth_colors(io::XyzPoints(in).view(), io::colours(in), *p.color_smooth);
+    const Smoothing out{smooth.noise, smooth.colors.empty() ? 0 : p.color_smooth->k};
+    if (progress) {
+        progress("color_smooth: colour noise " + format_rounded(255 * out.noise) +
+                 " of 255 (estimated): " +
+                 (out.k > 0 ? "the colour rule reads the median colour of each point and its " +
+                                  std::to_string(out.k) + " nearest neighbours"
+                            : "under " + format_rounded(255 * p.color_smooth->min_noise) +
+                                  ", the colour rule reads each point's own colour"));
+    }
+    if (out.k > 0) {
+        std::vector<std::uint32_t> packed(smooth.colors.size());
+        for (std::size_t i = 0; i < packed.size(); ++i) {
+            const auto q = [](float v) {
+                return static_cast<std::uint32_t>(std::clamp(std::lround(v * 255.0f), 0L, 255L));
+            };
+            const io::Rgb& c = smooth.colors[i];
+            packed[i] = (q(c.r) << 16) | (q(c.g) << 8) | q(c.b);
+        }
+        io::set_field(in, kDecisionRgb, packed);
+    }
+    return out;
+}
+
 /// The points of `in` that rule `p` keeps.
 Indices colour_kept(const io::Blob& in, const filters::ColorFilterParams& p) {
     p.validate();
@@ -146,6 +197,21 @@ Step apply_choice(io::Blob in, filters::FruitColorChoice c) {
 Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p) {
     filters::FruitColorChoice c = choose_fruit_color(in, p);
     return apply_choice(std::move(in), std::move(c));
+}
+
+Step apply_colour(io::Blob in,
+                  const ChainParams& p,
+                  const std::function<void(const std::string&)>& progress) {
+    const std::optional<Smoothing> smooth = smooth_decisions(in, p, progress);
+    if (!p.color && !p.fruit_color) {
+        throw InvalidArgument("apply_colour: the chain has no colour step");
+    }
+    Step out = p.color ? apply_color_filter(std::move(in), *p.color)
+                       : apply_fruit_color(std::move(in), *p.fruit_color);
+    if (smooth) {
+        smooth->finish(out.blob, out.record);
+    }
+    return out;
 }
 
 Step apply_crop(io::Blob in, const filters::CropParams& p) {
@@ -522,11 +588,13 @@ double spread(const io::Blob& cloud) {
     return std::sqrt(d2);
 }
 
-/// A colour candidate kept: its run, the rule in words, and the rule.
+/// A colour candidate kept: its run, the rule in words, the rule, and the share of its points
+/// its fruit centres claim.
 struct Kept {
     ChainResult run;
     std::string rule;
     const filters::ColorFilterParams* colour;
+    double claim = 0;
 };
 
 using Progress = std::function<void(const std::string&)>;
@@ -583,24 +651,13 @@ ChainResult chain_after(Step colour, const ChainParams& p, const Progress& progr
 }  // namespace
 
 ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
-    // Colour decisions on each point's neighbourhood colour (filters::smooth_colors), carried
-    // through the steps beside the cloud's own colours, which pass through untouched.
-    if (p.color_smooth && (p.color || p.fruit_color) && in.size() > 0 &&
-        !io::colour_fields(in).empty()) {
-        const std::vector<io::Rgb> smooth =
-            filters::smooth_colors(io::XyzPoints(in).view(), io::colours(in), *p.color_smooth);
-        std::vector<std::uint32_t> packed(smooth.size());
-        for (std::size_t i = 0; i < smooth.size(); ++i) {
-            const auto q = [](float v) {
-                return static_cast<std::uint32_t>(std::clamp(std::lround(v * 255.0f), 0L, 255L));
-            };
-            packed[i] = (q(smooth[i].r) << 16) | (q(smooth[i].g) << 8) | q(smooth[i].b);
-        }
-        io::set_field(in, kDecisionRgb, packed);
+    // Colour decisions on each point's neighbourhood colour where the colours are noisy,
+    // carried through the steps beside the cloud's own colours, which pass through untouched.
+    if (std::optional<Smoothing> smooth = smooth_decisions(in, p, progress)) {
         ChainParams decided = p;
         decided.color_smooth.reset();
         ChainResult out = run_chain(std::move(in), decided, progress);
-        io::remove_field(out.labelled, kDecisionRgb);
+        smooth->finish(out.labelled, out.steps.front());
         return out;
     }
     if (p.color) {
@@ -720,7 +777,7 @@ ChainResult by_shape(io::Blob in,
                                   ", the group whose fruit centres claim its points (" +
                                   share(g[b]) + "; " + share(g[1 - b]) + " of the other's, " +
                                   share(rule_claimed) + " of the rule's)",
-                              &(*two)[b].rule});
+                              &(*two)[b].rule, g[b]});
             than = g[b] + kClaimsMore;
             two = g[b] < kDoubtfulRule ? &(*two)[b].groups : nullptr;
         }
@@ -736,15 +793,20 @@ ChainResult by_shape(io::Blob in,
         }
         return kept;
     };
+    // A group of the rule kept competes with the greens (green fruit among leaves beside bark:
+    // a group of bark pieces may be claimed as fruit are, kFruitClaims, but less than the fruit).
+    std::optional<Kept> ruled;
     if (!c.rule_classes.empty() && rule_claimed < kDoubtfulRule) {
         std::vector<double> claimed;
-        auto kept = fruit_group(&c.rule_classes, rule_claimed, &claimed, in);
-        if (!kept && rule_claimed < kFewClaimed) {  // and the rule far from fruit
-            kept = within(c.rule_classes, claimed);
+        ruled = fruit_group(&c.rule_classes, rule_claimed, &claimed, in);
+        if (!ruled && rule_claimed < kFewClaimed) {  // and the rule far from fruit
+            ruled = within(c.rule_classes, claimed);
         }
-        if (kept) {
-            return done(std::move(kept->run), kept->colour, kept->rule);
-        }
+    }
+    const double beat = ruled ? ruled->claim : rule_claimed;  // what the greens must beat
+    const auto ruled_run = [&] { return done(std::move(ruled->run), ruled->colour, ruled->rule); };
+    if (ruled && ruled->claim >= kDoubtfulRule) {
+        return ruled_run();
     }
     // Pale fruit (under the saturation line: cream, lavender): the rule kept the bark or the
     // leaves. The run of the pale points, where their centres claim as fruit's do and more than
@@ -767,7 +829,7 @@ ChainResult by_shape(io::Blob in,
             kept.emplace(Kept{std::move(run),
                               c.pale->reason + " (their fruit centres claim " + share(g) +
                                   " of their points, " + share(rule_claimed) + " of the rule's)",
-                              &c.pale->rule});
+                              &c.pale->rule, g});
         }
         return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
     };
@@ -778,19 +840,22 @@ ChainResult by_shape(io::Blob in,
         ChainResult green = count_class(greens ? *greens : in, c.greens->rule);
         greens.reset();
         const double g = claims(green);
-        if (auto out = pale_fruit(std::max(g, rule_claimed + kClaimsMore))) {
+        if (auto out = pale_fruit(std::max(g, beat + kClaimsMore))) {
             return std::move(*out);
         }
-        if (g > rule_claimed + kClaimsMore) {
+        if (g > beat + kClaimsMore) {
             return done(std::move(green), &c.greens->rule,
                         c.greens->reason + " (their fruit centres claim " + share(g) +
                             " of their points, " + share(rule_claimed) + " of the rule's)",
                         {kBarkKept});
         }
     } else if (c.classes.size() != 2) {
-        if (auto out = pale_fruit(rule_claimed + kClaimsMore)) {
+        if (auto out = pale_fruit(beat + kClaimsMore)) {
             return std::move(*out);
         }
+    }
+    if (ruled && c.classes.size() != 2) {
+        return ruled_run();
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
         return done(
@@ -804,7 +869,10 @@ ChainResult by_shape(io::Blob in,
         c.rule_competes ? ", " + share(rule_claimed) + " of the rule's" : "";
     const bool kept_best = claimed[best] >= kFruitClaims &&
                            claimed[other] < kOtherClaims * claimed[best] &&
-                           claimed[best] > rule_claimed;
+                           claimed[best] > (ruled ? beat + kClaimsMore : rule_claimed);
+    if (ruled && !kept_best) {
+        return ruled_run();
+    }
     // A class that is not the fruit alone (green fruit beside bark: a class of hue holds the fruit
     // and the bark) may hold it in one of its own groups.
     runs[other] = {};

@@ -53,7 +53,7 @@ TEST(ColorSmooth, MedianOfEachChannelOverTheNearestNeighboursAsABruteForceRefere
                           static_cast<float>(rng.uniform())});
     }
     for (std::uint32_t k : {1u, 4u, 8u}) {
-        const std::vector<io::Rgb> got = smooth_colors(XyzView(c), colors, {.k = k});
+        const std::vector<io::Rgb> got = smooth_colors(XyzView(c), colors, {.k = k}).colors;
         const std::vector<io::Rgb> want = brute(c, colors, k);
         ASSERT_EQ(got.size(), want.size());
         for (std::size_t i = 0; i < got.size(); ++i) {
@@ -79,12 +79,12 @@ TEST(ColorSmooth, NoiseShrinksAndABorderBetweenTwoColoursStaysSharp) {
             noisy.push_back({base.r + static_cast<float>(0.1 * rng.normal()), base.g, base.b});
         }
     }
-    const std::vector<io::Rgb> kept = smooth_colors(XyzView(c), clean, {});
+    const std::vector<io::Rgb> kept = smooth_colors(XyzView(c), clean, {}).colors;
     for (std::size_t i = 0; i < c.size(); ++i) {
         ASSERT_EQ(kept[i].r, clean[i].r) << i;
         ASSERT_EQ(kept[i].g, clean[i].g) << i;
     }
-    const std::vector<io::Rgb> smooth = smooth_colors(XyzView(c), noisy, {});
+    const std::vector<io::Rgb> smooth = smooth_colors(XyzView(c), noisy, {}).colors;
     double before = 0, after = 0;
     std::size_t n = 0;
     for (std::size_t i = 0; i < c.size(); ++i) {
@@ -98,6 +98,34 @@ TEST(ColorSmooth, NoiseShrinksAndABorderBetweenTwoColoursStaysSharp) {
     EXPECT_LT(std::sqrt(after / n), 0.05);  // the median of 9: about 0.1 / 2.4
 }
 
+TEST(ColorSmooth, TheNoiseReadIsTheSigmaAddedAndCleanColoursAreLeftAlone) {
+    // A plane lattice of one colour plus N(0, sigma) a channel: a point's distance to its 8
+    // neighbours' median is about N(0, sigma * sqrt(1 + pi / 16)) (the median of 8 has a variance
+    // of about pi sigma^2 / 16), whose median absolute value over 0.6745 reads sigma * 1.09.
+    Cloud c;
+    for (int x = 0; x < 150; ++x) {
+        for (int y = 0; y < 150; ++y) {
+            c.push_back({static_cast<float>(x), static_cast<float>(y), 0.0f});
+        }
+    }
+    for (const double sigma : {0.0, 0.02, 0.05, 0.1}) {
+        Rng rng(11);
+        std::vector<io::Rgb> colors;
+        for (std::size_t i = 0; i < c.size(); ++i) {
+            const auto noisy = [&](double v) {
+                return static_cast<float>(v + sigma * rng.normal());
+            };
+            colors.push_back({noisy(0.6), noisy(0.3), noisy(0.2)});
+        }
+        const ColorSmoothParams p{.min_noise = kNoisyColours};
+        const SmoothedColors s = smooth_colors(XyzView(c), colors, p);
+        EXPECT_NEAR(s.noise, 1.09 * sigma, 0.1 * sigma + 1e-6) << sigma;
+        // smoothed where the noise reaches min_noise (10 of 255 = 0.039), else left alone
+        EXPECT_EQ(s.colors.empty(), s.noise < kNoisyColours) << sigma;
+        EXPECT_EQ(s.colors.empty(), sigma < 0.04) << sigma;
+    }
+}
+
 TEST(ColorSmooth, BadParametersAreRefused) {
     Cloud c;
     c.push_back({0, 0, 0});
@@ -107,7 +135,9 @@ TEST(ColorSmooth, BadParametersAreRefused) {
     const std::vector<io::Rgb> two(2);
     EXPECT_THROW((void)smooth_colors(XyzView(c), two, {.k = 0}), InvalidArgument);
     EXPECT_THROW((void)smooth_colors(XyzView(c), two, {.k = 65}), InvalidArgument);
-    EXPECT_EQ(smooth_colors(XyzView(c), two, {}).size(), 2u);
+    EXPECT_THROW((void)smooth_colors(XyzView(c), two, {.min_noise = -0.1}), InvalidArgument);
+    EXPECT_THROW((void)smooth_colors(XyzView(c), two, {.min_noise = 1.5}), InvalidArgument);
+    EXPECT_EQ(smooth_colors(XyzView(c), two, {}).colors.size(), 2u);
 }
 
 }  // namespace

@@ -37,9 +37,9 @@ void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsR
 struct ChainParams {
     std::optional<filters::ColorFilterParams> color;       ///< a fixed colour rule; when empty,
     std::optional<filters::FruitColorParams> fruit_color;  ///< a rule chosen from the cloud
-    /// when set, the colour rule (fixed or chosen) reads each point's neighbourhood colour
-    /// (filters::smooth_colors: SfM and NeRF colours vary from point to point); the output keeps
-    /// the cloud's own colours
+    /// when set, the colour rule (fixed or chosen) reads each point's neighbourhood colour where
+    /// the colours are noisy (filters::smooth_colors: SfM and NeRF colours vary from point to
+    /// point); the output keeps the cloud's own colours
     std::optional<filters::ColorSmoothParams> color_smooth;
     std::optional<filters::CropParams> crop;
     std::optional<filters::VoxelParams> voxel;

@@ -41,6 +41,12 @@ struct Step {
 /// The colour rule chosen from the cloud (filters::choose_fruit_color), then applied; the record's
 /// `rule` says which. A cloud without colour passes through under `auto` (a word needs colour).
 [[nodiscard]] Step apply_fruit_color(io::Blob in, const filters::FruitColorParams& p);
+/// The chain's colour step alone (p.color or p.fruit_color, the rule applied without the shape
+/// test of run_chain()), on each point's neighbourhood colour where p.color_smooth finds the
+/// colours noisy (its record's color_noise and color_smooth say so): pc_colorfilter.
+[[nodiscard]] Step apply_colour(io::Blob in,
+                                const ChainParams& p,
+                                const std::function<void(const std::string&)>& progress = {});
 [[nodiscard]] Step apply_crop(io::Blob in, const filters::CropParams& p);
 /// Sets `rgb` to filters::colorize's colours; the old colour fields (rgb, rgba, red green blue)
 /// go, every other field passes through.
@@ -81,11 +87,14 @@ struct ChainResult {
 /// under the saturation line, beside bark or leaves). Each is counted alone where the
 /// rule's fruit centres claim too few of its points (two groups of greens: also where few points
 /// lie outside foliage hue), and the run of the class whose centres claim its points is kept
-/// (docs/robustness.md gives the shares). The classes compete with the fruit radius as first
-/// measured; the run kept, where its centres claim under half its points, is split again with
-/// the radius measured without the points on branches (RecursiveSplitParams::branch_recheck).
-/// Where no group is offered only the green and the pale points are set aside (a copy of each),
-/// and the rule runs on `in` itself.
+/// (docs/robustness.md gives the shares); a group of the rule kept gives way to the greens where
+/// their centres claim clearly more (a group of bark pieces claimed as fruit are). Where
+/// p.color_smooth finds the colours noisy, every colour decision reads each point's
+/// neighbourhood median colour (the output keeps the cloud's colours). The classes compete with the
+/// fruit radius as first measured; the run kept, where its centres claim under half its points, is
+/// split again with the radius measured without the points on branches
+/// (RecursiveSplitParams::branch_recheck). Where no group is offered only the green and the pale
+/// points are set aside (a copy of each), and the rule runs on `in` itself.
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
