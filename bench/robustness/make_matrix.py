@@ -42,13 +42,21 @@ BARK = {'grey-brown': (110, 100, 90), 'brown': (100, 75, 50), 'red-brown': (120,
         'dark-bark': (60, 50, 45)}
 
 
-def draw(rng, families, colours, ids, part, wood=False, color_noise=False):
+DENSE_R_OVER_S = [30, 45]                        # sampled modes, held-out-26 on ...
+DENSE_SPACING = 0.0008                           # ... down to a spacing of 0.8 mm (camera-bound)
+
+
+def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
     masks leak some wood, as they leak leaves), sampled modes all of them.
     color_noise: each scene's natural colours get N(0, sigma) per channel, sigma 0, 12 or 25
-    (drawn last: SfM and NeRF colours are blended from the views that saw a point)."""
+    (drawn last: SfM and NeRF colours are blended from the views that saw a point).
+    dense: half the surface, SfM and stripes scenes are drawn at 30 or 45 spacings a radius
+    where the spacing stays >= 0.8 mm (real SfM exports of apples sit near 75 at 0.46 mm; the
+    spacing is set by the cameras, not by the fruit); drawn from the scene's own seed, so the
+    other draws keep their order."""
     for i in ids:
         family = rng.choice(list(families))
         mode = rng.choice(MODES)
@@ -59,6 +67,11 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False):
         units = rng.choice(list(UNITS))
         seed = rng.randrange(1, 10**6)
         radius, flags = families[family]
+        dense_rs = [x for x in DENSE_R_OVER_S if radius / x >= DENSE_SPACING]
+        if dense and mode in SAMPLED and mode != 'volume' and dense_rs:
+            own = random.Random(seed)
+            if own.random() < 0.5:
+                rs = own.choice(dense_rs)
         args = f'{flags} --radius-spread 0.2 --mode {mode} --voxel {radius / rs:.6g} --seed {seed}'
         if noise:
             args += f' --noise {noise}'
@@ -246,6 +259,11 @@ SHAPE_PARTS = [
 # (245,105,25: a deep orange between the orange and the red fruit), and colour noise: each
 # scene's natural colours get N(0, sigma) per channel, sigma 0, 12 or 25 (pc_synth
 # --color-noise; SfM and NeRF colours are blended from the views that saw a point).
+# 'held-out-26' (2841-2940, session 38, after held-out-25 was scored, before any method for it)
+# adds passion-fruit-like fruit (38 mm, aspect 1.15, single or in pairs) of a dusky purple-brown
+# (95,45,55: between the purple fruit and the red-brown and near-black bark), keeps the colour
+# noise, and draws dense clouds: surface, SfM and stripes scenes may be drawn at 30 or 45
+# spacings a radius (the matrix topped at 20; real SfM exports sit near 75).
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -286,8 +304,13 @@ WOOD_PARTS = [
      {'kumquat': (0.014, '--species plum --fruit-radius 0.014 --bunch-min 1 --bunch-max 4 '
                          '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')},
      {'tangerine': (245, 105, 25)}, set()),
+    ('held-out-26', 2053,
+     {'passion': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 2 '
+                         '--touch-gap 0.002 --fruit-count 50 --canopy 0.8,0.8,0.65')},
+     {'dusky': (95, 45, 55)}, set()),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25'}
+COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26'}
+DENSE_PARTS = {'held-out-26'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -297,6 +320,7 @@ ASPECTS['currant'] = 1.0
 ASPECTS['medlar'] = 0.85
 ASPECTS['grapefruit'] = 0.95
 ASPECTS['kumquat'] = 1.25
+ASPECTS['passion'] = 1.15
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
@@ -306,7 +330,7 @@ for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
                   lambda family, colour, mode, part=part: part,
                   wood=part in {w[0] for w in WOOD_PARTS},
-                  color_noise=part in COLOUR_NOISE_PARTS)
+                  color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
