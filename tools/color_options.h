@@ -89,7 +89,7 @@ inline void bind_color_options(cli::Tool& tool, ColorOptions& c, const std::stri
             if (s == "off" || s == "0") {
                 c.smooth.reset();
             } else if (s == "auto") {
-                c.smooth = filters::ColorSmoothParams{.min_noise = filters::kNoisyColours};
+                c.smooth = filters::kAutoColorSmooth;
             } else {
                 const double k = cli::parse_double("color-smooth", s);
                 if (!(k >= 1 && k <= 64 && k == std::floor(k))) {

@@ -10,9 +10,9 @@ namespace pl = pc::pipeline;
 
 int main(int argc, char** argv) {
     pc::tools::ColorOptions color;
-    // by default the rule is chosen from the cloud, on neighbourhood colours where they are noisy
-    color.word = pc::filters::FruitColorParams{};
-    color.smooth = pc::filters::ColorSmoothParams{.min_noise = pc::filters::kNoisyColours};
+    // by default pc_fruitcount's colour step: the rule chosen from the cloud, on neighbourhood
+    // colours where they are noisy
+    color.from_preset(pl::preset("dense"));
     pc::cli::Tool tool("pc_colorfilter", "keep points by colour (rgb/rgba or red green blue)");
     pc::tools::bind_color_options(tool, color, "");
     tool.presets(pl::preset_names(),

@@ -93,7 +93,7 @@ ChainParams preset(std::string_view name) {
         p.fruit_color = filters::FruitColorParams{};
         // Where the colours are noisy (SfM, NeRF), the rule reads each point's neighbourhood
         // colour: the median of its own and its 8 nearest neighbours' (docs/robustness.md).
-        p.color_smooth = filters::ColorSmoothParams{.k = 8, .min_noise = filters::kNoisyColours};
+        p.color_smooth = filters::kAutoColorSmooth;
         // No kNN outlier filter: it drops a tenth of every cloud, the sparse parts first (the far
         // side of SfM fruit, fruit sampled thinly, fruit of 2 spacings), while DBSCAN's
         // min_points and the split's leftover rules already drop isolated points

@@ -198,7 +198,7 @@ TEST(Steps, SmoothedColoursDecideAndTheCloudsOwnColoursPassThrough) {
     EXPECT_EQ(run_chain(in, p).labelled.size(), 90u);
     // under `auto` the colours are clean (most points sit on their neighbours' median): the
     // step reads noise 0 and leaves them
-    p.color_smooth = filters::ColorSmoothParams{.min_noise = filters::kNoisyColours};
+    p.color_smooth = filters::kAutoColorSmooth;
     const ChainResult clean = run_chain(in, p);
     EXPECT_EQ(clean.labelled.size(), 90u);
     ASSERT_EQ(clean.steps.size(), 2u);  // color_filter, dbscan

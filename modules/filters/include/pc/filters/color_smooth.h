@@ -19,17 +19,20 @@ struct ColorSmoothParams {
     void validate() const;
 };
 
-/// Colour noise from which smooth_colors() smooths under `auto`: 10 of 255 a channel. The noise
-/// read on clouds whose colours are clean: 5.9 of 255 on pc_synth's (±8 uniform a channel: σ 4.6,
-/// plus shading) and on a real SfM apple tree's (2.66M points); with N(0, 12) added, 13-14; with
+/// Colour noise from which smooth_colors() smooths under `auto`: 10 of 255 a channel. Read on
+/// clean colours: 4.4-13.3 of 255 on the matrix's pc_synth scenes (±8 levels and ±8 % brightness
+/// a point) and 7.4 on a real SfM apple tree (2.66M points); with N(0, 12) added, 14.8; with
 /// N(0, 25), 27-28 (docs/robustness.md).
 inline constexpr double kNoisyColours = 10.0 / 255;
+/// The `auto` smoothing: K = 8 where the noise reaches kNoisyColours (the dense preset's).
+inline constexpr ColorSmoothParams kAutoColorSmooth{.k = 8, .min_noise = kNoisyColours};
 
 struct SmoothedColors {
     /// The colours' point-to-point noise, as a normal σ a channel (0..1): the median, over up to
-    /// 20000 points spread through the cloud and their three channels, of the distance from a
-    /// point's colour to the median of its k nearest neighbours', over 0.6745 (a normal's median
-    /// absolute deviation). 0 for a cloud of fewer than k + 1 finite points.
+    /// 20000 points of whole blocks of the cloud (chosen by hash, their neighbourhoods complete)
+    /// and their three channels, of the distance from a point's colour to the median of its k
+    /// nearest neighbours', over 0.6745 (a normal's median absolute deviation). 0 for a cloud of
+    /// fewer than k + 1 finite points.
     double noise = 0;
     /// Each point's colour as the per-channel median of its own and its k nearest neighbours';
     /// empty where `noise` is under min_noise (the colours are clean enough as they are).
