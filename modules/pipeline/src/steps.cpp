@@ -833,10 +833,11 @@ ChainResult by_shape(io::Blob in,
         }
         return done(std::move(kept->run), kept->colour, kept->rule, {kPaleKept});
     };
-    // Green fruit beside bark: the rule kept the bark (its centres claim few of its points) and
-    // the greens form no two groups: the green points, where their centres claim more, and more
-    // than the pale points'.
-    if (c.greens && c.classes.size() != 2 && rule_claimed < kFewClaimed) {
+    // Green fruit beside bark: the rule kept the bark (its centres claim under kDoubtfulRule of
+    // its points: a rule smoothed over noisy colours keeps some of the fruit's darker side too,
+    // claimed 45 %) and the greens form no two groups: the green points, where their centres
+    // claim more by kClaimsMore, and more than the pale points'.
+    if (c.greens && c.classes.size() != 2 && rule_claimed < kDoubtfulRule) {
         ChainResult green = count_class(greens ? *greens : in, c.greens->rule);
         greens.reset();
         const double g = claims(green);

@@ -454,18 +454,17 @@ public:
         begin_.push_back(static_cast<std::uint32_t>(entries_.size()));
     }
 
-    /// Fruit centres: local maxima of the 3x3x3 cell sums, refined by mean shift within `radius`,
-    /// sharp (most of the votes within 2 × radius lie within radius), `separation` apart,
-    /// strongest first, each supported by at least min_support × the typical fruit's votes that
-    /// no stronger fruit explains.
-    std::vector<Peak> peaks(double radius,
-                            double separation,
-                            double min_support,
-                            double max_alignment,
-                            double two_way,
+    /// Fruit centres: local maxima of the 3x3x3 cell sums, refined by mean shift within
+    /// peak_radius × R, sharp (most of the votes within twice that lie within it),
+    /// peak_separation × R apart, strongest first, each supported by at least min_support × the
+    /// typical fruit's votes that no stronger fruit explains, from more than one side
+    /// (max_alignment), on a surface curved two ways (min_two_way).
+    std::vector<Peak> peaks(const SphereVoteParams& params,
                             const Sample& s,
                             double fruit_radius,
                             const Normals& nm) const {
+        const double radius = params.peak_radius * fruit_radius,
+                     separation = params.peak_separation * fruit_radius;
         std::vector<double> box(keys_.size(), 0.0);
         for (std::size_t c = 0; c < keys_.size(); ++c) {
             for_cells(keys_[c], 1, [&](std::size_t n) { box[c] += sum_[n]; });
@@ -532,7 +531,7 @@ public:
                 strong.push_back(found[k].support);
             }
         }
-        const double need = min_support * median(strong);
+        const double need = params.min_support * median(strong);
         // Strongest first; each accepted fruit explains away the points on and inside its sphere,
         // whose votes (the wrong-side shell, scattered normals) then support nothing else.
         const search::Grid grid(s.view, kCurvedAround * fruit_radius);
@@ -561,10 +560,11 @@ public:
             });
             // A fruit is seen from several sides; a flat patch (a piece of leaf) votes from one
             // direction only (its normals are parallel) and is no fruit.
-            if (p.support < need || towards.norm() > max_alignment * p.support) {
+            if (p.support < need || towards.norm() > params.max_alignment * p.support) {
                 continue;
             }
-            if (curved_one_way(p.centre, kCurvedAround * fruit_radius, two_way, grid, nm)) {
+            if (curved_one_way(p.centre, kCurvedAround * fruit_radius, params.min_two_way, grid,
+                               nm)) {
                 continue;
             }
             p.radius = voter_radius(p.centre, radius, s, fruit_radius);
@@ -1196,9 +1196,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
             }
         }
         votes.finish();
-        return votes.peaks(params.peak_radius * radius, params.peak_separation * radius,
-                           params.min_support, params.max_alignment, params.min_two_way, s, radius,
-                           nm);
+        return votes.peaks(params, s, radius, nm);
     };
     // The peaks at a radius, and the members given to them, starting again from the clusters
     // every time (a solid's refit and the second look below try other radii).
