@@ -78,9 +78,10 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
         if colour == 'mask':
             args += ' --colors mask'
         elif isinstance(colours[colour][0], tuple):  # bicoloured: ground colour, blush
-            ground, blush = colours[colour]
+            ground, blush, *share = colours[colour]
+            lo, hi = share[0] if share else (0.2, 0.8)
             args += (' --fruit-rgb ' + ','.join(map(str, ground)) + ' --blush-rgb ' +
-                     ','.join(map(str, blush)) + ' --blush-min 0.2 --blush-max 0.8')
+                     ','.join(map(str, blush)) + f' --blush-min {lo:g} --blush-max {hi:g}')
             if mode in SAMPLED:
                 args += f' --shading {shading}'
         else:
@@ -264,6 +265,11 @@ SHAPE_PARTS = [
 # (95,45,55: between the purple fruit and the red-brown and near-black bark), keeps the colour
 # noise, and draws dense clouds: surface, SfM and stripes scenes may be drawn at 30 or 45
 # spacings a radius (the matrix topped at 20; real SfM exports sit near 75).
+# 'held-out-27' (2941-3040, session 40, after held-out-26 was scored, before any method for it)
+# adds pomelo-like fruit (70 mm, oblate aspect 0.9, single, 30 on a tree of 1.2 m: fruit as
+# thick as the trunk or thicker, few of them) and fruit ripening unevenly (a red blush over 0 to
+# 100 % of each fruit over a yellow-green ground (160,185,70): in one tree fruit wholly green,
+# wholly red and between, as orchards are before harvest); colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -308,9 +314,13 @@ WOOD_PARTS = [
      {'passion': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 2 '
                          '--touch-gap 0.002 --fruit-count 50 --canopy 0.8,0.8,0.65')},
      {'dusky': (95, 45, 55)}, set()),
+    ('held-out-27', 2054,
+     {'pomelo': (0.070, '--species apple --fruit-radius 0.07 --bunch-min 1 --bunch-max 1 '
+                        '--fruit-count 30 --canopy 1.2,1.2,1.0')},
+     {'ripening': ((160, 185, 70), (185, 40, 45), (0, 1))}, set()),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26'}
-DENSE_PARTS = {'held-out-26'}
+COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27'}
+DENSE_PARTS = {'held-out-26', 'held-out-27'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -321,6 +331,7 @@ ASPECTS['medlar'] = 0.85
 ASPECTS['grapefruit'] = 0.95
 ASPECTS['kumquat'] = 1.25
 ASPECTS['passion'] = 1.15
+ASPECTS['pomelo'] = 0.9
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
