@@ -553,6 +553,11 @@ constexpr const char* kPaleKept =
     "claim few of them): the pale points were counted instead (cream or pale fruit); check the "
     "count, or give --fruit-color";
 
+constexpr const char* kTooLarge =
+    "the fruit radius is over a tenth of the spread of the points counted: a cloud of a few "
+    "fruit, or what was counted is no fruit (the ground, a trunk); check the count, or give "
+    "--fruit-color or --fruit-radius";
+
 /// The run a colour candidate kept whose fruit centres claim under this share of its points is
 /// split again with R measured without the points on branches (segmentation::SphereVoteParams::
 /// branch_below): the candidates compete with R as first measured, as the claims above were
@@ -560,11 +565,13 @@ constexpr const char* kPaleKept =
 /// a group of the fruit alone: 148 -> 326 of 150, docs/robustness.md, session 35).
 constexpr double kBranchAgain = 0.5;
 
-/// The pale points are no fruit where their fruit radius is over this share of the diagonal of
-/// the box holding the middle 98 % of their points along each axis: a tree's fruit are many times
-/// smaller than it, while a lone blob (the ground counted alone) is claimed whole by one centre of
-/// its own size. On the matrix: the dark ground as one "fruit" 0.51 and 0.56 (green fruit beside
-/// bark, 1887 and 2391: 50 and 90 counted as 1), cream fruit 0.012.
+/// A colour candidate's points are no fruit where their fruit radius is over this share of the
+/// diagonal of the box holding the middle 98 % of them along each axis: a tree's fruit are many
+/// times smaller than it, while a lone blob (the ground, a trunk counted alone) is claimed whole
+/// by a few centres of its own size. On the matrix: the dark ground as one "fruit" 0.51 and 0.56
+/// (the pale points beside bark, 1887 and 2391: 50 and 90 counted as 1), a dense SfM trunk (a
+/// group of the "not foliage" rule, 2842: R 0.207, 7 centres claiming 87 %, 6 counted of 120);
+/// cream fruit 0.012.
 constexpr double kLargestFruit = 0.1;
 
 /// The diagonal of the box holding the middle 98 % of `cloud`'s points along each axis (stray
@@ -687,11 +694,16 @@ ChainResult by_shape(io::Blob in,
     rest.split->branch_recheck = false;
     // The share its fruit centres claimed; none when they are no fruit: parts far from filling
     // a ball (solid clouds) or a sphere's surface (surface clouds) of the fruit radius (the
-    // tree's wood counted alone: a few "fruit" the size of the tree).
-    const auto claims = [](const ChainResult& run) {
+    // tree's wood counted alone: a few "fruit" the size of the tree), or a fruit radius over
+    // kLargestFruit of the points' spread.
+    const auto too_large = [](const ChainResult& run) {
+        const double r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
+        return r > kLargestFruit * spread(run.labelled);
+    };
+    const auto claims = [&](const ChainResult& run) {
         const auto ball = step_value(run, "recursive_split", "ball_fill");
         const auto shell = step_value(run, "recursive_split", "shell_fill");
-        return (ball && *ball < kNoBall) || (shell && *shell < kNoShell)
+        return (ball && *ball < kNoBall) || (shell && *shell < kNoShell) || too_large(run)
                    ? 0.0
                    : step_value(run, "recursive_split", "claimed").value_or(0);
     };
@@ -723,6 +735,9 @@ ChainResult by_shape(io::Blob in,
             again.fruit_color.reset();
             const std::size_t n = out.steps.front().points_in;
             out = chain_after(colour_step(std::move(out.labelled), n, *colour), again, {});
+        }
+        if (too_large(out)) {
+            before.push_back(kTooLarge);
         }
         out.warnings.insert(out.warnings.begin(), before.begin(), before.end());
         out.steps.front().rule = rule;
@@ -817,9 +832,8 @@ ChainResult by_shape(io::Blob in,
         }
         const io::Blob& from = pale ? *pale : in;
         ChainResult run = count_class(from, c.pale->rule);
-        const double g = claims(run),
-                     r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
-        if (!(g >= kFruitClaims && g > than && r <= kLargestFruit * spread(run.labelled))) {
+        const double g = claims(run);
+        if (!(g >= kFruitClaims && g > than)) {
             return std::nullopt;
         }
         std::optional<Kept> kept =
@@ -859,10 +873,12 @@ ChainResult by_shape(io::Blob in,
         return ruled_run();
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
-        return done(
-            std::move(*by_rule), c.rule ? &*c.rule : nullptr,
-            c.reason + " (its fruit centres claim " + share(rule_claimed) + " of its points)",
-            c.warnings);
+        return done(std::move(*by_rule), c.rule ? &*c.rule : nullptr,
+                    c.reason + (too_large(*by_rule)
+                                    ? " (its fruit radius is over a tenth of its points' spread)"
+                                    : " (its fruit centres claim " + share(rule_claimed) +
+                                          " of its points)"),
+                    c.warnings);
     }
     auto [runs, claimed] = each_alone(c.classes, in);
     const std::size_t best = claimed[1] > claimed[0] ? 1 : 0, other = 1 - best;
