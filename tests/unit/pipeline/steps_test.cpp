@@ -319,15 +319,27 @@ TEST(Chain, TheSplitRecordsHowFullItsFruitAre) {
 namespace pc::pipeline {
 namespace {
 
+/// 40 apples of `fruit_rgb` in a small canopy, with leaves.
+scenes::SceneParams apples(const std::array<std::uint8_t, 3>& fruit_rgb) {
+    scenes::SceneParams sp = scenes::species("apple");
+    sp.fruit_count = 40;
+    sp.canopy = {0.5, 0.5, 0.4};
+    sp.fruit_rgb = fruit_rgb;
+    return sp;
+}
+
+/// The fruit with at least one point in `r`.
+double present_in(const scenes::Rendered& r) {
+    return static_cast<double>(
+        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+}
+
 /// Green fruit (hue 86 degrees) among leaves of another green (109 degrees): the colours alone
 /// cannot say which green is the fruit. At 2.5 point spacings a fruit radius, pieces of leaf look
 /// like caps of fruit and were counted as fruit (56, 68 and 58 of 40 with every saturated point
 /// kept); counted alone, the leaves' green gives few fruit centres, the fruit's claims its points.
 TEST(Chain, GreenFruitAmongLeavesOfAnotherGreenAreToldApartByShape) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {125, 175, 60};
+    scenes::SceneParams sp = apples({125, 175, 60});
     for (std::uint64_t seed : {1, 2, 3}) {
         sp.seed = seed;
         const scenes::Rendered r = scenes::render(
@@ -350,10 +362,7 @@ TEST(Chain, GreenFruitAmongLeavesOfAnotherGreenAreToldApartByShape) {
 
 /// 40 apples of `fruit_rgb` in a small canopy beside a tree of five branches of brown bark.
 scenes::SceneParams beside_bark(const std::array<std::uint8_t, 3>& fruit_rgb) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = fruit_rgb;
+    scenes::SceneParams sp = apples(fruit_rgb);
     sp.branches = 5;
     sp.wood_rgb = {100, 75, 50};
     return sp;
@@ -366,8 +375,7 @@ void expect_found_by_shape(const scenes::SceneParams& sp,
                            const scenes::RenderParams& rp,
                            const std::string& chosen = "the group whose fruit centres claim") {
     const scenes::Rendered r = scenes::render(scenes::make_scene(sp), rp);
-    const auto present = static_cast<double>(
-        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const double present = present_in(r);
     io::Blob in = scenes::to_blob(r);
     const std::size_t n = in.size();
     const ChainResult c = run_chain(std::move(in), preset("dense"));
@@ -526,14 +534,10 @@ TEST(Chain, GreenFruitBeatARuleInDoubtNotOnlyAFarOne) {
 /// of the candidate's own points (kLargestFruit) is no fruit for any colour candidate, not only
 /// the pale points: the fruit are found (here a group of the greens' hue, apart from the ball).
 TEST(Chain, OneLargeBrownObjectIsNoFruitAndTheGreenFruitAreCounted) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {125, 175, 60};
+    scenes::SceneParams sp = apples({125, 175, 60});
     scenes::Rendered r = scenes::render(
         scenes::make_scene(sp), {.mode = scenes::Mode::kSurface, .voxel = 0.005, .leaf_leak = 0.3});
-    const auto present = static_cast<double>(
-        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const double present = present_in(r);
     // The ball beside the canopy: points on its sphere 5 mm apart (a Fibonacci lattice).
     float right = -1e9F, low = 1e9F;
     for (const auto& q : r.xyz) {
@@ -638,14 +642,10 @@ TEST(Chain, DarkGroundCountedAloneIsNotPaleFruit) {
 /// colour rule (28 counted of 50 on such a scene of the matrix). Their value parts them from the
 /// leaves, and counted alone the dark group is claimed by fruit centres.
 TEST(Chain, DarkGreenFruitAmongLighterLeavesAreFoundByValueAndShape) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {50, 65, 35};
+    scenes::SceneParams sp = apples({50, 65, 35});
     const scenes::Rendered r = scenes::render(
         scenes::make_scene(sp), {.mode = scenes::Mode::kExplicit, .voxel = 0.01, .leaf_leak = 0.3});
-    const auto present = static_cast<double>(
-        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const double present = present_in(r);
     const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
     EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present, 1.0);
     EXPECT_NE(c.steps.front().rule.find("values split"), std::string::npos) << c.steps.front().rule;
@@ -654,10 +654,7 @@ TEST(Chain, DarkGreenFruitAmongLighterLeavesAreFoundByValueAndShape) {
 /// Two greens that are both fruit (every other fruit painted the leaves' green, no leaves): each
 /// group counted alone is claimed by fruit centres, so neither is dropped.
 TEST(Chain, TwoGreensThatAreBothFruitAreBothKept) {
-    scenes::SceneParams sp = scenes::species("apple");
-    sp.fruit_count = 40;
-    sp.canopy = {0.5, 0.5, 0.4};
-    sp.fruit_rgb = {125, 175, 60};
+    scenes::SceneParams sp = apples({125, 175, 60});
     scenes::Rendered r = scenes::render(
         scenes::make_scene(sp), {.mode = scenes::Mode::kExplicit, .voxel = 0.01, .leaf_leak = 0});
     for (std::size_t i = 0; i < r.gt.size(); ++i) {
@@ -665,8 +662,7 @@ TEST(Chain, TwoGreensThatAreBothFruitAreBothKept) {
             r.rgb[i] = 0x3C7D2Du;  // 60, 125, 45
         }
     }
-    const auto present = static_cast<double>(
-        std::count_if(r.fruit_points.begin(), r.fruit_points.end(), [](auto n) { return n > 0; }));
+    const double present = present_in(r);
     const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
     EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present, 1.0);
     EXPECT_NE(c.steps.front().rule.find("each group counted alone"), std::string::npos)
