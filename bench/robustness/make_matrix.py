@@ -270,6 +270,12 @@ SHAPE_PARTS = [
 # thick as the trunk or thicker, few of them) and fruit ripening unevenly (a red blush over 0 to
 # 100 % of each fruit over a yellow-green ground (160,185,70): in one tree fruit wholly green,
 # wholly red and between, as orchards are before harvest); colour noise and dense clouds kept.
+# 'held-out-28' (3041-3140, session 40, after held-out-27 was scored, before any method for it)
+# adds a fruit wall (apple-like 38 mm, aspect 0.9, single or up to three, 90 fruit in a canopy
+# 1.2 m wide, 0.15 m deep and 0.9 m high: the trained planar canopies of modern orchards, the
+# layout most orchard SfM and LiDAR scans are made of) and chartreuse fruit (185,205,45: hue 68,
+# saturation 0.78, bright, at the yellow edge of the leaves' band, as some pears and greengages
+# are); colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -318,9 +324,13 @@ WOOD_PARTS = [
      {'pomelo': (0.070, '--species apple --fruit-radius 0.07 --bunch-min 1 --bunch-max 1 '
                         '--fruit-count 30 --canopy 1.2,1.2,1.0')},
      {'ripening': ((160, 185, 70), (185, 40, 45), (0, 1))}, set()),
+    ('held-out-28', 2055,
+     {'wall': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 3 '
+                      '--touch-gap 0.002 --fruit-count 90 --canopy 0.6,0.075,0.45')},
+     {'chartreuse': (185, 205, 45)}, set()),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27'}
-DENSE_PARTS = {'held-out-26', 'held-out-27'}
+COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28'}
+DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -332,6 +342,7 @@ ASPECTS['grapefruit'] = 0.95
 ASPECTS['kumquat'] = 1.25
 ASPECTS['passion'] = 1.15
 ASPECTS['pomelo'] = 0.9
+ASPECTS['wall'] = 0.9
 for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
