@@ -8,6 +8,8 @@
 #include <random>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include <pc/core/cloud.h>
 
 namespace pc::test {
@@ -50,6 +52,14 @@ inline Cloud sphere_shell(float r, std::size_t n, unsigned seed) {
         c.push_back({r * x / len, r * y / len, r * z / len});
     }
     return c;
+}
+
+/// The i-th of n directions spread evenly over the unit sphere, from the pole z = 1 to z = -1
+/// (a golden-angle spiral: points on a sphere about equally far apart).
+inline Eigen::Vector3d spiral_direction(std::size_t i, std::size_t n) {
+    const double z = 1 - 2 * (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+    const double rho = std::sqrt(1 - z * z), phi = 2.399963 * static_cast<double>(i);
+    return {rho * std::cos(phi), rho * std::sin(phi), z};
 }
 
 /// n points uniform in the cube [0, side)^3.

@@ -15,6 +15,8 @@
 #include <pc/cameras/render.h>
 #include <pc/core/error.h>
 
+#include "support/clouds.h"
+
 namespace pc::cameras {
 namespace {
 
@@ -71,9 +73,7 @@ void scene(const std::vector<Eigen::Vector3d>& centres, Cloud& c, std::vector<st
     const auto n = static_cast<int>(4 * kPi * kRadius * kRadius / (kSpacing * kSpacing));
     for (std::size_t k = 0; k < centres.size(); ++k) {
         for (int i = 0; i < n; ++i) {
-            const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
-            const Eigen::Vector3d p =
-                centres[k] + kRadius * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
+            const Eigen::Vector3d p = centres[k] + kRadius * test::spiral_direction(i, n);
             c.push_back(
                 {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
             id.push_back(static_cast<std::uint32_t>(k + 1));

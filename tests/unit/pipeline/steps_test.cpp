@@ -13,6 +13,7 @@
 #include <pc/pipeline/steps.h>
 #include <pc/scenes/render.h>
 
+#include "support/clouds.h"
 #include "support/synthetic.h"
 
 namespace pc::pipeline {
@@ -544,14 +545,12 @@ TEST(Chain, OneLargeBrownObjectIsNoFruitAndTheGreenFruitAreCounted) {
         right = std::max(right, q[0]);
         low = std::min(low, q[2]);
     }
-    const double radius = 0.15, golden = M_PI * (3 - std::sqrt(5.0));
+    const double radius = 0.15;
     const auto n = static_cast<std::size_t>(4 * M_PI * radius * radius / (0.005 * 0.005));
     for (std::size_t i = 0; i < n; ++i) {
-        const double z = 1 - 2 * (i + 0.5) / static_cast<double>(n), ring = std::sqrt(1 - z * z);
-        const double a = golden * static_cast<double>(i);
-        r.xyz.push_back({static_cast<float>(right + 0.3 + radius * ring * std::cos(a)),
-                         static_cast<float>(radius * ring * std::sin(a)),
-                         static_cast<float>(low + radius * (1 + z))});
+        const Eigen::Vector3d p = radius * test::spiral_direction(i, n);
+        r.xyz.push_back({static_cast<float>(right + 0.3 + p.x()), static_cast<float>(p.y()),
+                         static_cast<float>(low + radius + p.z())});
         r.rgb.push_back(0x644B32u);  // 100, 75, 50
         r.gt.push_back(0);
     }
@@ -586,11 +585,13 @@ TEST(Chain, AFewFruitCroppedAreCountedWithAWarning) {
             r.xyz.push_back(all.xyz[i]);
             r.rgb.push_back(all.rgb[i]);
             r.gt.push_back(all.gt[i]);
-            fruit[all.gt[i]] += all.gt[i] > 0 ? 1 : 0;
+            if (all.gt[i] > 0) {
+                ++fruit[all.gt[i]];
+            }
         }
     }
     const auto whole = static_cast<double>(std::count_if(fruit.begin(), fruit.end(), [&](auto f) {
-        return f.first > 0 && f.second > all.fruit_points[f.first - 1] / 2;
+        return f.second > all.fruit_points[f.first - 1] / 2;
     }));
     ASSERT_GE(whole, 1.0);
     const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));

@@ -12,6 +12,7 @@
 #include <pc/core/random.h>
 #include <pc/segmentation/sphere_vote.h>
 
+#include "support/clouds.h"
 #include "support/partition.h"
 
 namespace pc::segmentation {
@@ -45,10 +46,7 @@ void add_shells(Scene& s,
         const auto n =
             static_cast<int>(std::lround(4 * 3.141592653589793 * balls[b].r * balls[b].r));
         for (int i = 0; i < n; ++i) {
-            const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
-            const Eigen::Vector3d p =
-                balls[b].centre +
-                balls[b].r * Eigen::Vector3d(rho * std::cos(phi), rho * std::sin(phi), z);
+            const Eigen::Vector3d p = balls[b].centre + balls[b].r * test::spiral_direction(i, n);
             bool hidden = false;
             for (std::size_t o = 0; o < balls.size(); ++o) {
                 hidden = hidden || (o != b && (p - balls[o].centre).norm() < balls[o].r);
@@ -281,8 +279,7 @@ void add_spheroid(Scene& s,
     const Eigen::Vector3d a = axis.normalized();
     const auto n = static_cast<int>(std::lround(4 * 3.141592653589793 * e * e * (1 + aspect) / 2));
     for (int i = 0; i < n; ++i) {
-        const double z = 1 - 2 * (i + 0.5) / n, rho = std::sqrt(1 - z * z), phi = 2.399963 * i;
-        const Eigen::Vector3d y(rho * std::cos(phi), rho * std::sin(phi), z);
+        const Eigen::Vector3d y = test::spiral_direction(i, n);
         const Eigen::Vector3d along = y.dot(a) * a;
         s.add(centre + e * (y - along) + e * aspect * along, id, id);
     }
