@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
     // options is given (as --leaf enables voxel); its parameters start as the paper's.
     pc::filters::KnnOutlierParams knn = pl::preset("paper-dense").knn.value();
     seg::RecursiveSplitParams split = *chain.split;
-    bool no_color = false, no_knn = false, no_split = false;
+    bool no_color = false, no_knn = false, no_split = false, no_wood = false;
     std::optional<double> gt;
     bool eps_check = false;
     bool no_eps_check = false;
@@ -122,6 +122,9 @@ int main(int argc, char** argv) {
                 "DBSCAN: core needs this many, itself included");
     pc::tools::bind_split_options(tool, split, "split: ");
     tool.flag("no-split", &no_split, "skip the recursive split");
+    tool.flag("no-wood", &no_wood,
+              "keep the parts coloured like the wood (one part far too large for a fruit, "
+              "coloured unlike the others, and the parts nearer its colour than theirs)");
     tool.option("count-min-points", &chain.count_min_points,
                 "count clusters with at least this many points");
     tool.flag("eps-check", &eps_check,
@@ -147,6 +150,9 @@ int main(int argc, char** argv) {
         if (no_color) {
             chain.color.reset();
             chain.fruit_color.reset();
+        }
+        if (no_color || no_wood) {
+            chain.wood.reset();
         }
         if (chain.knn) {
             chain.knn = knn;

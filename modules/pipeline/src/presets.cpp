@@ -103,6 +103,10 @@ ChainParams preset(std::string_view name) {
         p.split = segmentation::RecursiveSplitParams{.rule = segmentation::SplitRule::kSpheres,
                                                      .core_fraction = 0.5,
                                                      .min_relative_size = 0.1};
+        // The tree's wood, where it shows as one part far too large for a fruit and its colour
+        // differs from the fruit's, goes with the parts coloured like it (bark pieces whose
+        // points' noisy colours passed the colour rule: docs/robustness.md).
+        p.wood = filters::WoodPartsParams{};
         return p;
     }
     if (name == "invnerfseg") {

@@ -7,6 +7,7 @@
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
 #include <pc/filters/color_smooth.h>
+#include <pc/filters/wood_parts.h>
 #include <pc/io/info.h>
 #include <pc/io/points.h>
 #include <pc/pipeline/steps.h>
@@ -369,17 +370,6 @@ constexpr double kGivenTooLarge = 0.55;
 /// 11 had no other warning (5 of them off by 10-20 %).
 constexpr double kEpsSensitive = 0.9;
 
-/// The median point count of clusters 1..count (0 when there are none).
-double median_cluster_points(const io::Blob& labelled, std::uint32_t count) {
-    std::vector<double> points(count, 0.0);
-    for (const std::uint32_t l : io::labels(labelled, "label")) {
-        if (l >= 1 && l <= count) {
-            ++points[l - 1];
-        }
-    }
-    return points.empty() ? 0.0 : median(points);
-}
-
 Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p) {
     segmentation::RecursiveSplitResult r =
         segmentation::recursive_split(io::XyzPoints(in).view(), io::labels(in, "label"), p);
@@ -417,7 +407,7 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         }
         step.record.rule = r.solid ? "solid fruit: their outer layer voted" : "fruit surfaces";
         const double expected = kSolidBallPoints * std::pow(r.fruit_radius / r.spacing, 3);
-        const double typical = median_cluster_points(step.blob, r.cluster_count);
+        const double typical = r.median_part;
         const bool balls = r.solid && r.peaks > 0 && r.fruit_radius > 0 && r.spacing > 0;
         if (balls) {
             step.record.values.emplace_back("ball_fill", typical / expected);
@@ -445,7 +435,7 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
                 " the points' normals measure: is it a diameter, or in other units? (too "
                 "large a radius joins neighbouring fruit into one)");
         }
-        if (r.larger_radius >= kTwoSizes * r.fruit_radius) {
+        if (r.larger_radius > 0 && r.larger_radius >= kTwoSizes * r.fruit_radius) {
             step.warnings.push_back(
                 "two fruit sizes fit these points: the normals first gave a fruit radius of " +
                 format_rounded(r.larger_radius) + ", whose centres left many points unclaimed, " +
@@ -490,6 +480,32 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
         }
     }
     return step;
+}
+
+Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p) {
+    const std::size_t n = in.size();
+    if (n == 0 || io::colour_fields(in).empty()) {
+        return {
+            std::move(in), "wood_parts: no colours, nothing dropped", {"wood_parts", n, n, {}}, {}};
+    }
+    const filters::WoodPartsResult r =
+        filters::wood_parts(io::colours(in), io::labels(in, "label"), p);
+    const auto kept = static_cast<std::size_t>(
+        std::count_if(r.labels.begin(), r.labels.end(), [](std::uint32_t l) { return l != 0; }));
+    io::set_field(in, "label", r.labels);
+    return {
+        std::move(in),
+        "wood_parts: " +
+            (r.giants > 0 ? std::to_string(r.giants) + " part(s) of the wood's size and " +
+                                std::to_string(r.dropped) + " coloured like them dropped"
+                          : std::string("no part of the wood's size coloured apart")) +
+            ", " + std::to_string(r.count) + " clusters",
+        {"wood_parts",
+         n,
+         kept,
+         {{"giants", r.giants}, {"dropped", r.dropped}, {"colour_spread", r.fruit_colour_spread}},
+         {}},
+        {}};
 }
 
 namespace {
@@ -615,6 +631,9 @@ ChainResult by_shape(io::Blob in,
                      filters::FruitColorChoice c,
                      const Progress& progress);
 
+/// run_chain() but its wood step (ChainParams::wood).
+ChainResult chain_of(io::Blob in, const ChainParams& p, const Progress& progress = {});
+
 /// Appends step `s`'s record, note and warnings to `out`; returns its points.
 io::Blob take(ChainResult& out, Step s, const Progress& progress) {
     out.steps.push_back(s.record);
@@ -655,15 +674,13 @@ ChainResult chain_after(Step colour, const ChainParams& p, const Progress& progr
     return rest_of_chain(std::move(out), std::move(cur), p, progress);
 }
 
-}  // namespace
-
-ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
+ChainResult chain_of(io::Blob in, const ChainParams& p, const Progress& progress) {
     // Colour decisions on each point's neighbourhood colour where the colours are noisy,
     // carried through the steps beside the cloud's own colours, which pass through untouched.
     if (std::optional<Smoothing> smooth = smooth_decisions(in, p, progress)) {
         ChainParams decided = p;
         decided.color_smooth.reset();
-        ChainResult out = run_chain(std::move(in), decided, progress);
+        ChainResult out = chain_of(std::move(in), decided, progress);
         smooth->finish(out.labelled, out.steps.front());
         return out;
     }
@@ -679,6 +696,21 @@ ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progres
         return chain_after(apply_choice(std::move(in), std::move(c)), p, progress);
     }
     return rest_of_chain({}, std::move(in), p, progress);
+}
+
+/// Whether run_chain() ends with the wood step: set, after the spheres split.
+bool wood_step(const ChainParams& p) {
+    return p.wood && p.split && p.split->rule == segmentation::SplitRule::kSpheres;
+}
+
+}  // namespace
+
+ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
+    ChainResult out = chain_of(std::move(in), p, progress);
+    if (wood_step(p)) {
+        out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
+    }
+    return out;
 }
 
 namespace {
@@ -764,7 +796,7 @@ ChainResult by_shape(io::Blob in,
     double rule_claimed = 0;
     if (c.rule_competes || !offered || !c.rule_classes.empty()) {
         rest.color = c.rule;
-        by_rule = offered ? run_chain(in, rest) : run_chain(std::move(in), rest);
+        by_rule = offered ? chain_of(in, rest) : chain_of(std::move(in), rest);
         rule_claimed = claims(*by_rule);
     }
     // Bark or ground kept with the fruit: the rule's own groups, each counted alone, where its
@@ -915,7 +947,7 @@ ChainResult by_shape(io::Blob in,
                         of_rule + ")");
     }
     rest.color = c.rule;
-    ChainResult out = by_rule ? std::move(*by_rule) : run_chain(std::move(in), rest);
+    ChainResult out = by_rule ? std::move(*by_rule) : chain_of(std::move(in), rest);
     return done(std::move(out), c.rule ? &*c.rule : nullptr,
                 c.reason + " (each group counted alone: fruit centres claimed " +
                     share(claimed[0]) + " and " + share(claimed[1]) + " of their points" + of_rule +
@@ -988,6 +1020,10 @@ EpsCheck check_eps(const ChainResult& chain,
             if (p.split) {
                 labels = segmentation::recursive_split(XyzView(points), std::move(labels), *p.split)
                              .labels;
+            }
+            if (wood_step(p) && !io::colour_fields(labelled).empty()) {
+                labels =
+                    filters::wood_parts(io::colours(labelled), std::move(labels), *p.wood).labels;
             }
             count = segmentation::summarize_clusters(XyzView(points), labels, p.count_min_points)
                         .clusters.size();

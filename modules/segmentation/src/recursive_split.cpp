@@ -110,6 +110,7 @@ RecursiveSplitResult by_spheres(const XyzView& points,
     r.peaks = v.peaks;
     r.solid = v.solid;
     r.claimed = v.claimed;
+    r.median_part = v.median_part;
     r.measured_radius = v.measured_radius;
     r.larger_radius = v.larger_radius;
     return r;

@@ -914,48 +914,77 @@ double parts(const std::vector<std::uint32_t>& labels, const std::vector<std::ui
     return static_cast<double>(seen.size());
 }
 
+/// A leftover holding more points than this many fruit around a centre (their median) is no
+/// fruit nor bunch (the matrix's bunches hold up to 12): the tree's wood or the ground.
+constexpr double kGiantPart = 50;
+
+/// What finish() kept.
+struct Finished {
+    std::uint32_t count = 0;  ///< parts counted
+    double median_part = 0;   ///< SphereVoteResult::median_part
+};
+
 /// Drops parts below min_size points or min_relative × the median fruit's points (to 0) and
 /// numbers the rest 1.. by decreasing size. Labels 1..fruit are fruit around a centre, higher
-/// ones the leftovers of clusters no centre claimed. When centres claimed most points, the
-/// median is over their fruit and leftovers also go below a quarter of it (the pieces DBSCAN cut
-/// off a fruit); otherwise (few or no centres) every part is measured against the median part.
-std::uint32_t finish(std::vector<std::uint32_t>& labels,
-                     std::uint32_t min_size,
-                     double min_relative,
-                     std::uint32_t fruit) {
-    if (min_relative > 0) {
-        std::uint32_t top = 0;
-        for (auto l : labels) {
-            top = std::max(top, l);
+/// ones the leftovers of clusters no centre claimed. When centres claimed most points, giant
+/// leftovers (kGiantPart) aside, the median is over their fruit and leftovers also go below a
+/// quarter of it (the pieces DBSCAN cut off a fruit, the crumbs scan lines and noisy colours
+/// leave beside the wood); otherwise (few or no centres) every part is measured against the
+/// median part.
+Finished finish(std::vector<std::uint32_t>& labels,
+                std::uint32_t min_size,
+                double min_relative,
+                std::uint32_t fruit) {
+    std::uint32_t top = 0;
+    for (auto l : labels) {
+        top = std::max(top, l);
+    }
+    std::vector<double> size(std::size_t{top} + 1, 0.0);
+    for (auto l : labels) {
+        size[l] += 1;
+    }
+    std::vector<double> fruit_sizes;
+    for (std::uint32_t l = 1; l <= std::min(top, fruit); ++l) {
+        if (size[l] > 0) {
+            fruit_sizes.push_back(size[l]);
         }
-        std::vector<double> size(std::size_t{top} + 1, 0.0);
-        for (auto l : labels) {
-            size[l] += 1;
-        }
-        double claimed = 0, all = 0;
-        for (std::uint32_t l = 1; l <= top; ++l) {
-            claimed += l <= fruit ? size[l] : 0.0;
-            all += size[l];
-        }
-        if (claimed < 0.5 * all) {
-            fruit = 0;
-        }
+    }
+    const double giant = fruit_sizes.empty() ? 0.0 : kGiantPart * median(fruit_sizes);
+    double claimed = 0, all = 0, giants = 0;
+    for (std::uint32_t l = 1; l <= top; ++l) {
+        claimed += l <= fruit ? size[l] : 0.0;
+        all += size[l];
+        giants += l > fruit && size[l] > giant ? size[l] : 0.0;
+    }
+    // The parts kept where the centres' fruit set the reference (`by_fruit`), else the median part.
+    const auto kept = [&](bool by_fruit) {
         std::vector<double> reference;
         for (std::uint32_t l = 1; l <= top; ++l) {
-            if (size[l] > 0 && (fruit == 0 || l <= fruit)) {
+            if (size[l] > 0 && (!by_fruit || l <= fruit)) {
                 reference.push_back(size[l]);
             }
         }
         const double typical = reference.empty() ? 0.0 : median(reference);
-        for (auto& l : labels) {
-            const double cut =
-                (fruit > 0 && l > fruit ? std::max(min_relative, 0.25) : min_relative);
-            if (l != 0 && size[l] < cut * typical) {
-                l = 0;
-            }
+        std::vector<bool> keep(std::size_t{top} + 1, false);
+        for (std::uint32_t l = 1; l <= top; ++l) {
+            const double cut = by_fruit && l > fruit ? std::max(min_relative, 0.25) : min_relative;
+            keep[l] = size[l] > 0 && size[l] >= min_size && size[l] >= cut * typical;
+        }
+        return keep;
+    };
+    const bool relative = min_relative > 0 && fruit > 0;
+    const std::vector<bool> keep = kept(relative && claimed >= 0.5 * (all - giants));
+    std::vector<double> judged;
+    const std::vector<bool> judged_keep = kept(relative && claimed >= 0.5 * all);
+    for (std::uint32_t l = 1; l <= top; ++l) {
+        if (judged_keep[l]) {
+            judged.push_back(size[l]);
         }
     }
-    return renumber_by_size(labels, min_size);
+    for (auto& l : labels) {
+        l = keep[l] ? l : 0;
+    }
+    return {renumber_by_size(labels, min_size), judged.empty() ? 0.0 : median(judged)};
 }
 
 }  // namespace
@@ -1046,8 +1075,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     }
     // Numbers and filters the parts (the clusters, whole, when no fruit centre was found).
     const auto done = [&] {
-        r.cluster_count =
+        const Finished f =
             finish(labels, params.min_cluster_size, params.min_relative_size, r.peaks);
+        r.cluster_count = f.count;
+        r.median_part = f.median_part;
         r.labels = std::move(labels);
         return r;
     };
@@ -1325,7 +1356,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
         const double fewer = parts(labels, members) - parts(trial, members);
         const std::uint32_t count =
             finish(counted, params.min_cluster_size, params.min_relative_size,
-                   static_cast<std::uint32_t>(peaks.size()));
+                   static_cast<std::uint32_t>(peaks.size()))
+                .count;
         if (fewer > 0 && fewer >= params.coarse_joins * count) {
             labels = std::move(trial);
             joined = joins;

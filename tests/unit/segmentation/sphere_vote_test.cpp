@@ -438,6 +438,35 @@ TEST(SphereVote, ABranchHoldingMostPointsDoesNotSetTheRadius) {
     EXPECT_LT(without.peaks, 35u);
 }
 
+TEST(SphereVote, CrumbsBesideTheWoodAreNotCountedButWeighInTheMedianPart) {
+    // Fruit beside a tree's wood whose scan lines or noisy colours DBSCAN left in crumbs: 35 fruit
+    // of radius 5 (11 000 points), a tube of radius 20 (37 800 points, one cluster no centre
+    // claims) and 100 crumbs of 4 points far from any fruit. The centres claim under half of all
+    // points, but the tube is no fruit (it holds the points of over 50 fruit): judged without it,
+    // the crumbs are measured against the fruit (a quarter of their median) and dropped. The
+    // median part, which judges a colour class, still counts them as they were counted before:
+    // every part measured against the median part (a crumb), none dropped. (The radius is given:
+    // the crumbs would make the first rough size the points', the tube's.)
+    Scene s = small_fruit();
+    add_tube(s, 100, 20, 300);
+    const std::size_t crumbs = s.cloud.size();
+    for (std::uint32_t k = 0; k < 100; ++k) {
+        const Eigen::Vector3d at(-150.0 - 5 * (k % 10), 40.0 * (k / 10), 0);
+        for (int q = 0; q < 4; ++q) {
+            s.add(at + Eigen::Vector3d(q % 2, q / 2, 0.5 * q), 0, 200 + k);
+        }
+    }
+    const SphereVoteResult r =
+        sphere_vote(XyzView(s.cloud), s.label, {.fruit_radius = 5, .min_relative_size = 0.1});
+    EXPECT_GE(r.peaks, 35u);
+    EXPECT_LT(r.claimed, 0.5);
+    for (std::size_t i = crumbs; i < s.cloud.size(); ++i) {
+        ASSERT_EQ(r.labels[i], 0u) << "crumb point " << i << " counted";
+    }
+    EXPECT_LE(r.cluster_count, r.peaks + 1);  // the tube counted once at most
+    EXPECT_EQ(r.median_part, 4);              // 100 crumbs of 4 among about 36 larger parts
+}
+
 /// A branch with rounded ends: add_tube() closed by the outer halves of two spheres of its
 /// radius (points about one spacing apart; truth 0, DBSCAN cluster 50).
 void add_capsule(Scene& s, double x, double radius, int length) {

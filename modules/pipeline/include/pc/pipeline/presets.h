@@ -13,6 +13,7 @@
 #include <pc/filters/fruit_color.h>
 #include <pc/filters/knn_outlier.h>
 #include <pc/filters/voxel_downsample.h>
+#include <pc/filters/wood_parts.h>
 #include <pc/segmentation/dbscan.h>
 #include <pc/segmentation/recursive_split.h>
 
@@ -47,6 +48,8 @@ struct ChainParams {
     segmentation::DbscanParams dbscan;
     EpsRule eps;  ///< how dbscan.eps is chosen (fixed by default)
     std::optional<segmentation::RecursiveSplitParams> split;
+    /// after the spheres split, on coloured points: the parts coloured like the wood dropped
+    std::optional<filters::WoodPartsParams> wood;
     std::uint32_t count_min_points = 1;  ///< clusters with fewer points are not counted
 };
 
@@ -57,7 +60,8 @@ struct ChainParams {
 ///  - dense: beyond the paper, for unknown clouds: the colour rule chosen from the cloud
 ///    (filters::choose_fruit_color), eps = 4 x the point spacing, the spheres split rule
 ///    (segmentation::sphere_vote: no medians, lengths from the fruit radius it estimates),
-///    clusters below 0.1 x the median size dropped; pc_fruitcount's default
+///    clusters below 0.1 x the median size dropped, the parts coloured like the wood dropped
+///    (filters::wood_parts); pc_fruitcount's default
 ///  - paper-dense: the paper's dense setting (sections 2.3-2.5): eps 0.015, paper split rule
 ///  - paper-sparse: the paper's degraded-mask setting: eps 0.030, split only above 5x median volume
 ///  - invnerfseg: the author's public script, column by column (crop box, voxel 0.001, eps 0.0065,

@@ -69,6 +69,9 @@ struct KnnOutput {
 [[nodiscard]] Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps = {});
 /// Reads and rewrites `label`.
 [[nodiscard]] Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams& p);
+/// Reads and rewrites `label`: the parts filters::wood_parts() calls the wood go to 0 (a cloud
+/// without colour passes through).
+[[nodiscard]] Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.
 struct ChainResult {

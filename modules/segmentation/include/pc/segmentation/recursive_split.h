@@ -62,6 +62,7 @@ struct RecursiveSplitResult {
     double claimed = 0;           ///< spheres rule: share of the points given to a fruit centre
     double measured_radius = 0;   ///< spheres rule, radius given: the one the points give (0: none)
     double larger_radius = 0;  ///< spheres rule: a first estimate replaced as a bunch's (0: none)
+    double median_part = 0;    ///< spheres rule: SphereVoteResult::median_part
     double hollow_radius = 0;  ///< cores rule: fruit radius estimated on hollow clusters
 };
 

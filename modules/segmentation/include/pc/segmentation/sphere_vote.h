@@ -77,7 +77,11 @@ struct SphereVoteParams {
     double join_resolution = 6;
     double coarse_joins = 0.2;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
-    double min_relative_size = 0;  ///< ... and those with fewer than this × the median final size
+    /// ... and those with fewer than this × the median final size: the median fruit's where
+    /// the centres claimed most points, leftovers also under a quarter of it (pieces cut off a
+    /// fruit), leftovers of more than 50 fruit's points (the wood) not weighed in that share;
+    /// else the median part's
+    double min_relative_size = 0;
 
     void validate() const;
 };
@@ -97,6 +101,10 @@ struct SphereVoteResult {
     double larger_radius = 0;
     bool solid = false;  ///< solid fruit (their outer layer voted), else surfaces
     double claimed = 0;  ///< share of the clustered points given to a fruit centre
+    /// The median points of a part counted were the leftovers of more than 50 fruit's points
+    /// weighed in the centres' share (min_relative_size): the crumbs beside the wood included.
+    /// How a colour class is judged (one whose points crumble is doubtful), not what is counted
+    double median_part = 0;
 };
 
 /// Counts fruit as spheres, on solid and surface clouds alike, without medians over clusters:

@@ -1,0 +1,61 @@
+#pragma once
+// Parts of a count that are the tree's wood, told by their colour: a part's mean colour is
+// exact where a point's is noise, and the wood shows its colour in the one part far too large
+// to be a fruit or a bunch.
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <pc/io/points.h>
+
+namespace pc::filters {
+
+struct WoodPartsParams {
+    /// A part holding more points than this many times the median part is the wood or the
+    /// ground, no fruit nor bunch (a bunch holds up to about 12 fruit).
+    double giant = 50;
+    /// ... and more than this share of the parts' points: the tree's wood, kept by the colour
+    /// rule, is a large share of the points (a trunk and branches 0.29-0.81 over the 16 matrix
+    /// scenes the step corrected), a merged mass of leaves or fruit a small one (0.09: green
+    /// fruit among leaves, where the leaves' mass was coloured like the fruit)
+    double share = 0.2;
+    /// Its colour is the wood's, told from the fruit's, where the two lie more than this many
+    /// times the fruit parts' own colour spread apart (their median distance from the fruit's
+    /// colour) ...
+    double apart = 4;
+    /// ... and by this CIELAB ΔE at the least (a just noticeable difference: exact colours, such
+    /// as a mask export's, have no spread)
+    double min_apart = 2.3;
+    void validate() const;
+};
+
+struct WoodPartsResult {
+    std::vector<std::uint32_t> labels;  ///< per point: 1..count by decreasing size, or 0
+    std::uint32_t count = 0;
+    std::uint32_t giants = 0;   ///< parts of the wood's size whose colour was told apart
+    std::uint32_t dropped = 0;  ///< other parts dropped: coloured like a giant
+    /// The fruit parts' colour spread (CIELAB ΔE) beside the first giant told apart; 0: none
+    double fruit_colour_spread = 0;
+};
+
+/// The colour of a point in CIELAB (D65; L in 0..100), from sRGB channels in [0, 1].
+[[nodiscard]] std::array<double, 3> cielab(const io::Rgb& c);
+
+/// Drops the wood from a count (labels 1.. per point, 0 noise; `colours` one per point). Each
+/// part of more than `giant` × the median part's points and more than `share` of the parts'
+/// points is weighed against the other parts by
+/// mean colour (CIELAB; points with a non-finite colour left out): the fruit's colour is the
+/// median colour (per channel, each part one vote) of the parts nearer it than the giant's
+/// (two means, one held at the giant's colour, started from the parts further from it than the
+/// median part). Where the giant's colour lies more than `apart` × those parts' spread (and
+/// `min_apart`) from the fruit's, the giant is the wood and goes, with every part nearer its
+/// colour than the fruit's (bark pieces). Parts are left alone where no giant is told apart (no
+/// giant; a giant coloured as the parts are: mask colours, brown fruit beside brown bark, a
+/// merged bunch). Throws pc::InvalidArgument when the sizes differ.
+[[nodiscard]] WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
+                                         std::vector<std::uint32_t> labels,
+                                         const WoodPartsParams& params = {});
+
+}  // namespace pc::filters

@@ -1,0 +1,177 @@
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <pc/core/error.h>
+#include <pc/core/labels.h>
+#include <pc/core/stats.h>
+#include <pc/filters/wood_parts.h>
+
+namespace pc::filters {
+
+namespace {
+
+using Lab = std::array<double, 3>;
+
+double distance(const Lab& a, const Lab& b) {
+    return std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+}
+
+}  // namespace
+
+void WoodPartsParams::validate() const {
+    if (!(giant > 1 && std::isfinite(giant))) {
+        throw InvalidArgument("wood_parts: giant must be > 1");
+    }
+    if (!(share >= 0 && share <= 1)) {
+        throw InvalidArgument("wood_parts: share must be in [0, 1]");
+    }
+    if (!(apart > 0 && std::isfinite(apart))) {
+        throw InvalidArgument("wood_parts: apart must be > 0");
+    }
+    if (!(min_apart >= 0 && std::isfinite(min_apart))) {
+        throw InvalidArgument("wood_parts: min_apart must be >= 0");
+    }
+}
+
+std::array<double, 3> cielab(const io::Rgb& c) {
+    const auto linear = [](double v) {
+        return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    };
+    const double r = linear(c.r), g = linear(c.g), b = linear(c.b);
+    // sRGB to XYZ, relative to the D65 white
+    const double x = (0.4124 * r + 0.3576 * g + 0.1805 * b) / 0.95047;
+    const double y = 0.2126 * r + 0.7152 * g + 0.0722 * b;
+    const double z = (0.0193 * r + 0.1192 * g + 0.9505 * b) / 1.08883;
+    const auto f = [](double t) {
+        return t > 216.0 / 24389 ? std::cbrt(t) : (24389.0 / 27 * t + 16) / 116;
+    };
+    return {116 * f(y) - 16, 500 * (f(x) - f(y)), 200 * (f(y) - f(z))};
+}
+
+WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
+                           std::vector<std::uint32_t> labels,
+                           const WoodPartsParams& params) {
+    params.validate();
+    if (colours.size() != labels.size()) {
+        throw InvalidArgument("wood_parts: one colour per label needed (" +
+                              std::to_string(labels.size()) + " labels, " +
+                              std::to_string(colours.size()) + " colours)");
+    }
+    WoodPartsResult r;
+    std::uint32_t top = 0;
+    for (const std::uint32_t l : labels) {
+        top = std::max(top, l);
+    }
+    // Each part's points and mean colour (of its points with a finite colour).
+    std::vector<double> points(std::size_t{top} + 1, 0.0), coloured(std::size_t{top} + 1, 0.0);
+    std::vector<Lab> mean(std::size_t{top} + 1, Lab{0, 0, 0});
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        const std::uint32_t l = labels[i];
+        points[l] += 1;
+        const io::Rgb& c = colours[i];
+        if (l != 0 && std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b)) {
+            const Lab v = cielab(c);
+            for (int k = 0; k < 3; ++k) {
+                mean[l][k] += v[k];
+            }
+            coloured[l] += 1;
+        }
+    }
+    std::vector<double> sizes;
+    for (std::uint32_t l = 1; l <= top; ++l) {
+        if (points[l] > 0) {
+            sizes.push_back(points[l]);
+        }
+        for (int k = 0; k < 3 && coloured[l] > 0; ++k) {
+            mean[l][k] /= coloured[l];
+        }
+    }
+    double counted = 0;
+    for (const double n : sizes) {
+        counted += n;
+    }
+    const double giant =
+        sizes.empty() ? 0.0 : std::max(params.giant * median(sizes), params.share * counted);
+    // The parts' median colour and spread (giants and parts without colour aside).
+    std::vector<std::uint32_t> giants, others;
+    for (std::uint32_t l = 1; l <= top; ++l) {
+        if (coloured[l] > 0) {
+            (points[l] > giant ? giants : others).push_back(l);
+        }
+    }
+    if (giants.empty() || others.empty()) {
+        r.count = renumber_by_size(labels);
+        r.labels = std::move(labels);
+        return r;
+    }
+    // Each giant's colour against the other parts': the fruit's colour is the median colour
+    // (per channel, each part one vote) of the parts nearer it than the giant's, found from
+    // those further from the giant than the median part is (two means, one held at the giant's).
+    const auto median_colour = [&](const std::vector<std::uint32_t>& of) {
+        Lab out{};
+        for (int k = 0; k < 3; ++k) {
+            std::vector<double> channel;
+            for (const std::uint32_t l : of) {
+                channel.push_back(mean[l][k]);
+            }
+            out[k] = median(channel);
+        }
+        return out;
+    };
+    std::vector<bool> drop(std::size_t{top} + 1, false);
+    for (const std::uint32_t g : giants) {
+        std::vector<double> to_giant;
+        for (const std::uint32_t l : others) {
+            to_giant.push_back(distance(mean[l], mean[g]));
+        }
+        const double middle = median(to_giant);
+        std::vector<std::uint32_t> fruit;
+        for (const std::uint32_t l : others) {
+            if (distance(mean[l], mean[g]) >= middle) {
+                fruit.push_back(l);
+            }
+        }
+        Lab colour = median_colour(fruit);
+        for (int round = 0; round < 20; ++round) {
+            fruit.clear();
+            for (const std::uint32_t l : others) {
+                if (distance(mean[l], colour) <= distance(mean[l], mean[g])) {
+                    fruit.push_back(l);
+                }
+            }
+            const Lab next = median_colour(fruit);  // `fruit` holds the furthest part at least
+            if (next == colour) {
+                break;
+            }
+            colour = next;
+        }
+        std::vector<double> off;
+        for (const std::uint32_t l : fruit) {
+            off.push_back(distance(mean[l], colour));
+        }
+        const double spread = median(off);
+        if (!(distance(mean[g], colour) > std::max(params.apart * spread, params.min_apart))) {
+            continue;
+        }
+        r.fruit_colour_spread = r.giants == 0 ? spread : r.fruit_colour_spread;
+        ++r.giants;
+        drop[g] = true;
+        for (const std::uint32_t l : others) {
+            drop[l] = drop[l] || distance(mean[l], colour) > distance(mean[l], mean[g]);
+        }
+    }
+    for (const std::uint32_t l : others) {
+        r.dropped += drop[l] ? 1 : 0;
+    }
+    for (std::uint32_t& l : labels) {
+        l = drop[l] ? 0 : l;
+    }
+    r.count = renumber_by_size(labels);
+    r.labels = std::move(labels);
+    return r;
+}
+
+}  // namespace pc::filters
