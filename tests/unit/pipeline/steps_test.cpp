@@ -302,8 +302,9 @@ TEST(Chain, TheSplitRecordsHowFullItsFruitAre) {
         const ChainResult c =
             run_chain(scenes::to_blob(scenes::render(scene, {.mode = mode, .voxel = 0.006})),
                       preset("dense"));
-        const auto at = std::find_if(c.steps.begin(), c.steps.end(),
-                                     [](const StepRecord& s) { return s.name == "recursive_split"; });
+        const auto at = std::find_if(c.steps.begin(), c.steps.end(), [](const StepRecord& s) {
+            return s.name == "recursive_split";
+        });
         ASSERT_NE(at, c.steps.end());
         const StepRecord& split = *at;
         std::map<std::string, double> v(split.values.begin(), split.values.end());
