@@ -46,11 +46,13 @@ DENSE_R_OVER_S = [30, 45]                        # sampled modes, held-out-26 on
 DENSE_SPACING = 0.0008                           # ... down to a spacing of 0.8 mm (camera-bound)
 
 
-def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False):
+def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False,
+         barks=BARK):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
-    masks leak some wood, as they leak leaves), sampled modes all of them.
+    masks leak some wood, as they leak leaves), sampled modes all of them; the bark colour one of
+    `barks`.
     color_noise: each scene's natural colours get N(0, sigma) per channel, sigma 0, 12 or 25
     (drawn last: SfM and NeRF colours are blended from the views that saw a point).
     dense: half the surface, SfM and stripes scenes are drawn at 30 or 45 spacings a radius
@@ -91,9 +93,9 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
         if UNITS[units]:
             args += ' ' + UNITS[units]
         if wood:
-            bark = rng.choice(list(BARK))
+            bark = rng.choice(list(barks))
             args += (f' --branches {rng.randint(3, 8)} --trunk-radius {rng.uniform(0.03, 0.08):.3f}'
-                     f' --wood-rgb {",".join(map(str, BARK[bark]))}')
+                     f' --wood-rgb {",".join(map(str, barks[bark]))}')
             if mode not in SAMPLED:
                 args += ' --wood-leak 0.2'
         if color_noise:
@@ -276,6 +278,11 @@ SHAPE_PARTS = [
 # layout most orchard SfM and LiDAR scans are made of) and chartreuse fruit (185,205,45: hue 68,
 # saturation 0.78, bright, at the yellow edge of the leaves' band, as some pears and greengages
 # are); colour noise and dense clouds kept.
+# 'held-out-29' (3141-3240, session 41, after held-out-28 was scored, before any method for it)
+# adds chili-like fruit (12 mm, aspect 2.0: longer than any so far, in bunches of 2-4 touching),
+# coral fruit (240,110,90: a pale red-orange, saturation 0.63, bright) and silver bark (birch-
+# or cherry-like light grey, (175,170,160): pale, as the pale fruit are, not dark as the other
+# barks; one of the five bark colours of this part only); colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -328,9 +335,13 @@ WOOD_PARTS = [
      {'wall': (0.038, '--species apple --fruit-radius 0.038 --bunch-min 1 --bunch-max 3 '
                       '--touch-gap 0.002 --fruit-count 90 --canopy 0.6,0.075,0.45')},
      {'chartreuse': (185, 205, 45)}, set()),
+    ('held-out-29', 2056,
+     {'chili': (0.012, '--species plum --fruit-radius 0.012 --bunch-min 2 --bunch-max 4 '
+                       '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')},
+     {'coral': (240, 110, 90)}, set(), {**BARK, 'silver': (175, 170, 160)}),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28'}
-DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28'}
+COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29'}
+DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -343,7 +354,8 @@ ASPECTS['kumquat'] = 1.25
 ASPECTS['passion'] = 1.15
 ASPECTS['pomelo'] = 0.9
 ASPECTS['wall'] = 0.9
-for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
+ASPECTS['chili'] = 2.0
+for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
     shaped = {f: (r, flags + (f' --aspect {ASPECTS[f]:g} --aspect-spread 0.1' if ASPECTS[f] != 1 else ''))
@@ -352,7 +364,8 @@ for part, seed, new_families, new_colours, left_out in SHAPE_PARTS + WOOD_PARTS:
     lines += draw(random.Random(seed), shaped, palette, range(first, first + 100),
                   lambda family, colour, mode, part=part: part,
                   wood=part in {w[0] for w in WOOD_PARTS},
-                  color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS)
+                  color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS,
+                  barks=barks[0] if barks else BARK)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
