@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
         "\nThresholds are fixed from the input clusters. See docs/tools/pc_recursive_split.md.\n");
     return tool.run(argc, argv, [&](pc::cli::Streams& io) {
         pl::Step split = pl::apply_recursive_split(io.read(), p);
-        if (wood && !no_wood && p.rule == seg::SplitRule::kSpheres) {
+        if (!no_wood && pl::drops_wood(p, wood)) {
             io.note(split.note);
             pl::Step dropped = pl::apply_wood_parts(std::move(split.blob), *wood);
             dropped.warnings.insert(dropped.warnings.begin(), split.warnings.begin(),

@@ -283,6 +283,11 @@ SHAPE_PARTS = [
 # coral fruit (240,110,90: a pale red-orange, saturation 0.63, bright) and silver bark (birch-
 # or cherry-like light grey, (175,170,160): pale, as the pale fruit are, not dark as the other
 # barks; one of the five bark colours of this part only); colour noise and dense clouds kept.
+# 'held-out-30' (3241-3340, session 42, after held-out-29 was scored, before any method for it)
+# adds cacao-like pods (45 mm, aspect 2.2: the longest fruit so far and among the largest,
+# single, 30 on a tree of 1 m) of magenta (200,40,130: hue 326, deep and saturated, between the
+# purple and the pink fruit, as dragon fruit and some cacao pods are); the silver bark stays
+# among the five; colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -339,9 +344,14 @@ WOOD_PARTS = [
      {'chili': (0.012, '--species plum --fruit-radius 0.012 --bunch-min 2 --bunch-max 4 '
                        '--touch-gap 0.001 --fruit-count 120 --canopy 0.6,0.6,0.5')},
      {'coral': (240, 110, 90)}, set(), {**BARK, 'silver': (175, 170, 160)}),
+    ('held-out-30', 2057,
+     {'pod': (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 1 '
+                     '--fruit-count 30 --canopy 1.0,1.0,0.8')},
+     {'magenta': (200, 40, 130)}, set(), {**BARK, 'silver': (175, 170, 160)}),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29'}
-DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29'}
+COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
+                      'held-out-30'}
+DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -355,6 +365,7 @@ ASPECTS['passion'] = 1.15
 ASPECTS['pomelo'] = 0.9
 ASPECTS['wall'] = 0.9
 ASPECTS['chili'] = 2.0
+ASPECTS['pod'] = 2.2
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)

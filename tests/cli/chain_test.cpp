@@ -280,6 +280,41 @@ TEST(PcFruitcount, ColourSmoothingFollowsTheColoursNoise) {
     }
 }
 
+TEST(PcFruitcount, NoWoodKeepsThePartsColouredLikeTheWood) {
+    // 50 yellow-green fruit beside brown bark as structure from motion (the condition matrix's
+    // scene 2629, 19k points): the wood step drops the trunk and the bark pieces coloured like it
+    // (50 counted); --no-wood keeps them (63 here). pc_recursive_split --preset dense ends with
+    // the same step, and takes the same flag.
+    TempDir dir;
+    ASSERT_EQ(run_shell("@pc_synth --species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max "
+                        "2 --touch-gap 0.002 --fruit-count 50 --canopy 0.9,0.9,0.7 --aspect 1.5 "
+                        "--aspect-spread 0.1 --radius-spread 0.2 --mode sfm --voxel 0.009 --seed "
+                        "380841 --noise 0.1 --fruit-rgb 175,190,60 --shading 0.6 --branches 7 "
+                        "--trunk-radius 0.039 --wood-rgb 100,75,50 -o " +
+                        dir.file("tree.pcd"))
+                  .code,
+              0);
+    const auto count = [&](const std::string& options) {
+        const RunResult r = run_shell("@pc_fruitcount -i " + dir.file("tree.pcd") + options);
+        EXPECT_EQ(r.code, 0) << options << ": " << r.err;
+        return nlohmann::json::parse(r.out);
+    };
+    const auto with = count("");
+    const auto without = count(" --no-wood --cloud " + dir.file("wooded.pcd"));
+    EXPECT_EQ(with["count"], 50);
+    EXPECT_GT(without["count"].get<int>(), 55);
+    EXPECT_EQ(with["steps"].back()["step"], "wood_parts");
+    EXPECT_NE(without["steps"].back()["step"], "wood_parts");
+    // the parts kept with the wood, split again: the step drops the wood unless told not to
+    const auto split = [&](const std::string& options) {
+        const RunResult r = run_shell("@pc_recursive_split --preset dense" + options + " -i " +
+                                      dir.file("wooded.pcd") + " | @pc_count --plain");
+        EXPECT_EQ(r.code, 0) << options << ": " << r.err;
+        return std::stoi(r.out);
+    };
+    EXPECT_LT(split(""), split(" --no-wood"));
+}
+
 TEST(PcFruitcount, EpsCheckWarnsWhenTheCountSwingsWithEps) {
     // The author script's eps 0.0065 sits below this sample's ~7 mm spacing: at 0.8x every fruit
     // falls apart into noise, at 1.25x they hold together. The default's lengths come from the

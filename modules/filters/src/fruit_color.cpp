@@ -358,7 +358,7 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
         const std::string reason = "auto: natural colours: the pale points (saturation 0.." +
                                    format_number(pale.saturation->hi) +
                                    ", not black: cream, pale or greyish fruit)";
-        out.pale = ColourClass{pale, reason, rule_groups(sample, pale, reason + ", ", false)};
+        out.pale = ColourClass{pale, reason, rule_groups(sample, pale, reason + ", ", true)};
     }
     const std::size_t fruitish = saturated - foliage;
     if (static_cast<double>(fruitish) < 0.03 * static_cast<double>(saturated)) {

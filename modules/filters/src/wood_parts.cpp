@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -89,10 +90,7 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
             mean[l][k] /= coloured[l];
         }
     }
-    double counted = 0;
-    for (const double n : sizes) {
-        counted += n;
-    }
+    const double counted = std::accumulate(sizes.begin(), sizes.end(), 0.0);
     const double giant =
         sizes.empty() ? 0.0 : std::max(params.giant * median(sizes), params.share * counted);
     // The parts' median colour and spread (giants and parts without colour aside).
@@ -123,23 +121,24 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
     };
     std::vector<bool> drop(std::size_t{top} + 1, false);
     for (const std::uint32_t g : giants) {
-        std::vector<double> to_giant;
+        std::vector<double> to_giant;  // of each of `others`
         for (const std::uint32_t l : others) {
             to_giant.push_back(distance(mean[l], mean[g]));
         }
-        const double middle = median(to_giant);
+        std::vector<double> reordered = to_giant;  // median() reorders its argument
+        const double middle = median(reordered);
         std::vector<std::uint32_t> fruit;
-        for (const std::uint32_t l : others) {
-            if (distance(mean[l], mean[g]) >= middle) {
-                fruit.push_back(l);
+        for (std::size_t j = 0; j < others.size(); ++j) {
+            if (to_giant[j] >= middle) {
+                fruit.push_back(others[j]);
             }
         }
         Lab colour = median_colour(fruit);
         for (int round = 0; round < 20; ++round) {
             fruit.clear();
-            for (const std::uint32_t l : others) {
-                if (distance(mean[l], colour) <= distance(mean[l], mean[g])) {
-                    fruit.push_back(l);
+            for (std::size_t j = 0; j < others.size(); ++j) {
+                if (distance(mean[others[j]], colour) <= to_giant[j]) {
+                    fruit.push_back(others[j]);
                 }
             }
             const Lab next = median_colour(fruit);  // `fruit` holds the furthest part at least
@@ -159,8 +158,8 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
         r.fruit_colour_spread = r.giants == 0 ? spread : r.fruit_colour_spread;
         ++r.giants;
         drop[g] = true;
-        for (const std::uint32_t l : others) {
-            drop[l] = drop[l] || distance(mean[l], colour) > distance(mean[l], mean[g]);
+        for (std::size_t j = 0; j < others.size(); ++j) {
+            drop[others[j]] = drop[others[j]] || distance(mean[others[j]], colour) > to_giant[j];
         }
     }
     for (const std::uint32_t l : others) {

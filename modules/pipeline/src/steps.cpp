@@ -482,6 +482,11 @@ Step apply_recursive_split(io::Blob in, const segmentation::RecursiveSplitParams
     return step;
 }
 
+bool drops_wood(const segmentation::RecursiveSplitParams& split,
+                const std::optional<filters::WoodPartsParams>& wood) {
+    return wood && split.rule == segmentation::SplitRule::kSpheres;
+}
+
 Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p) {
     const std::size_t n = in.size();
     if (n == 0 || io::colour_fields(in).empty()) {
@@ -556,6 +561,9 @@ constexpr double kNoBall = 0.15;
 /// (session 32) the median part held 0.061-1.1 of it (0.098 at the first percentile); the wood
 /// counted alone as one "fruit" the size of the tree, 0.013 (1887: 1 counted of 50).
 constexpr double kNoShell = 0.03;
+/// A group of the pale points whose spacing is over this many times the cloud's is a scatter
+/// of stray colours, no fruit's surface (pale_fruit in by_shape).
+constexpr double kScattered = 4;
 /// The green points are kept instead of the rule where their centres claim at least this much
 /// more of their points.
 constexpr double kClaimsMore = 0.1;
@@ -698,10 +706,8 @@ ChainResult chain_of(io::Blob in, const ChainParams& p, const Progress& progress
     return rest_of_chain({}, std::move(in), p, progress);
 }
 
-/// Whether run_chain() ends with the wood step: set, after the spheres split.
-bool wood_step(const ChainParams& p) {
-    return p.wood && p.split && p.split->rule == segmentation::SplitRule::kSpheres;
-}
+/// Whether run_chain() ends with the wood step.
+bool wood_step(const ChainParams& p) { return p.split && drops_wood(*p.split, p.wood); }
 
 }  // namespace
 
@@ -830,13 +836,14 @@ ChainResult by_shape(io::Blob in,
         }
         return kept;
     };
-    // Neither of two classes (claimed `claimed`) is kept: one may hold the fruit in its own groups.
+    // Neither of two classes of `from` (claimed `claimed`) is kept: one may hold the fruit in its
+    // own groups, where they are claimed more than `than` and their class by kClaimsMore.
     const auto within = [&](const std::vector<filters::ColourClass>& two,
-                            const std::vector<double>& claimed) {
+                            const std::vector<double>& claimed, double than, const io::Blob& from) {
         std::optional<Kept> kept;
         for (std::size_t k = 0; k < two.size() && !kept; ++k) {
-            kept = fruit_group(&two[k].groups, std::max(rule_claimed, claimed.at(k)) + kClaimsMore,
-                               nullptr, in);
+            kept = fruit_group(&two[k].groups, std::max(than, claimed.at(k) + kClaimsMore), nullptr,
+                               from);
         }
         return kept;
     };
@@ -847,7 +854,7 @@ ChainResult by_shape(io::Blob in,
         std::vector<double> claimed;
         ruled = fruit_group(&c.rule_classes, rule_claimed, &claimed, in);
         if (!ruled && rule_claimed < kFewClaimed) {  // and the rule far from fruit
-            ruled = within(c.rule_classes, claimed);
+            ruled = within(c.rule_classes, claimed, rule_claimed + kClaimsMore, in);
         }
     }
     const double beat = ruled ? ruled->claim : rule_claimed;  // what the greens must beat
@@ -865,12 +872,36 @@ ChainResult by_shape(io::Blob in,
         const io::Blob& from = pale ? *pale : in;
         ChainResult run = count_class(from, c.pale->rule);
         const double g = claims(run);
+        std::optional<Kept> kept;
         if (!(g >= kFruitClaims && g > than)) {
-            return std::nullopt;
+            // Bark as unsaturated as the fruit (grey-brown beside cream) is among the pale
+            // points, claimed little together: one of their groups, or of a group's own groups
+            // (their hues split the greys, their values the lit fruit from the dark bark), may
+            // be the fruit.
+            std::vector<double> claimed;
+            than = std::max(than, g + kClaimsMore);
+            kept = fruit_group(&c.pale->groups, than, &claimed, from);
+            if (!kept && !claimed.empty()) {
+                kept = within(c.pale->groups, claimed, than, from);
+            }
+            // ... where it is a surface, not a scatter of stray colours (under noise a few of the
+            // saturated fruit's and bark's points pass for pale, far apart): its points lie
+            // within kScattered times the spacing of the denser of the rule's and the pale points
+            // (2958, tan fruit under colour noise 25: such a group 17 times further apart than
+            // the rule's points was claimed 72 %, 1852 counted of 120; cream fruit, 1.0-1.7).
+            const auto spacing = [](const ChainResult& r) {
+                return step_value(r, "dbscan", "spacing").value_or(0);
+            };
+            double dense = spacing(run);
+            if (by_rule && spacing(*by_rule) > 0) {
+                dense = dense > 0 ? std::min(dense, spacing(*by_rule)) : spacing(*by_rule);
+            }
+            if (!kept || (dense > 0 && spacing(kept->run) > kScattered * dense)) {
+                return std::nullopt;
+            }
+        } else if (g < kDoubtfulRule) {
+            kept = fruit_group(&c.pale->groups, g + kClaimsMore, nullptr, from);
         }
-        std::optional<Kept> kept =
-            g < kDoubtfulRule ? fruit_group(&c.pale->groups, g + kClaimsMore, nullptr, from)
-                              : std::nullopt;
         if (!kept) {
             kept.emplace(Kept{std::move(run),
                               c.pale->reason + " (their fruit centres claim " + share(g) +
@@ -930,7 +961,7 @@ ChainResult by_shape(io::Blob in,
         finer = fruit_group(&c.classes[best].groups, claimed[best] + kClaimsMore, nullptr, in);
     } else if (!kept_best) {
         runs.clear();
-        finer = within(c.classes, claimed);
+        finer = within(c.classes, claimed, rule_claimed + kClaimsMore, in);
     }
     if (finer) {
         return done(std::move(finer->run), finer->colour, finer->rule);
@@ -1021,7 +1052,7 @@ EpsCheck check_eps(const ChainResult& chain,
                 labels = segmentation::recursive_split(XyzView(points), std::move(labels), *p.split)
                              .labels;
             }
-            if (wood_step(p) && !io::colour_fields(labelled).empty()) {
+            if (wood_step(p) && !io::colour_fields(labelled).empty()) {  // as apply_wood_parts
                 labels =
                     filters::wood_parts(io::colours(labelled), std::move(labels), *p.wood).labels;
             }

@@ -267,6 +267,38 @@ TEST(FruitColor, PaleFruitUnderBrownBarkAreOfferedAsThePalePoints) {
     EXPECT_FALSE(choose_fruit_color(red, {}).pale);
 }
 
+TEST(FruitColor, PaleFruitBesideBarkAsPaleAsThemAreAGroupOfThePalePoints) {
+    // Cream fruit (235, 225, 195: saturation 0.17) beside grey-brown bark (110, 100, 90: 0.18)
+    // and bluish-grey ground (150, 160, 175), all three pale points. The ground's values lie
+    // between the fruit's and the bark's, so their hues part first, the ground from the rest;
+    // within the warm hues the values part the lit fruit from the dark bark: a group of a group
+    // holds the fruit whole and no bark.
+    std::mt19937 rng(13);
+    auto c = around({235, 225, 195}, 900, rng);
+    const auto leaves = around({60, 125, 45}, 600, rng);
+    const auto bark = around({110, 100, 90}, 1200, rng);
+    const auto ground = around({150, 160, 175}, 900, rng);
+    for (const auto& part : {leaves, bark, ground}) {
+        c.insert(c.end(), part.begin(), part.end());
+    }
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    ASSERT_TRUE(r.pale) << r.reason;
+    const auto fruit_alone = [&](const ColourClass& k) {
+        const auto kept = color_filter(c, k.rule).kept;
+        return kept.size() >= 890 &&
+               std::all_of(kept.begin(), kept.end(), [](auto i) { return i < 900; });
+    };
+    EXPECT_FALSE(fruit_alone(*r.pale));
+    bool found = false;
+    for (const ColourClass& group : r.pale->groups) {
+        EXPECT_FALSE(fruit_alone(group)) << group.reason;
+        for (const ColourClass& sub : group.groups) {
+            found = found || fruit_alone(sub);
+        }
+    }
+    EXPECT_TRUE(found) << r.pale->reason;
+}
+
 TEST(FruitColor, EachWordKeepsItsHueAndDropsDistantOnes) {
     // Bands (degrees): red 320..35, orange 10..55, yellow 35..80, green 55..170, purple 240..350.
     // Neighbouring bands overlap on purpose (an orange-red apple is both).

@@ -65,7 +65,8 @@ struct FruitColorChoice {
     /// saturation groups above it: pale fruit beside brown bark) and not black, where they are 3 %
     /// or more: counted instead of `rule` where its centres claim too few of its points and
     /// nothing else was kept (cream fruit: the rule kept the bark, or the leaves), with their own
-    /// two groups (`groups`: the fruit beside dark ground)
+    /// two groups (`groups`: the fruit beside dark ground), each with its own two groups (hues
+    /// first part the greys, then values the lit fruit from bark as pale as them)
     std::optional<ColourClass> pale;
 };
 

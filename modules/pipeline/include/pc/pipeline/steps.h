@@ -72,6 +72,10 @@ struct KnnOutput {
 /// Reads and rewrites `label`: the parts filters::wood_parts() calls the wood go to 0 (a cloud
 /// without colour passes through).
 [[nodiscard]] Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p);
+/// Whether the wood step follows `split`: `wood` is set and the split is the spheres rule (the
+/// rule whose parts are single fruit, so that a part of the wood's size is no fruit).
+[[nodiscard]] bool drops_wood(const segmentation::RecursiveSplitParams& split,
+                              const std::optional<filters::WoodPartsParams>& wood);
 
 /// The whole chain, colour filter to recursive split; returns the labelled cloud.
 struct ChainResult {
