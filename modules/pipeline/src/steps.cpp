@@ -487,9 +487,19 @@ bool drops_wood(const segmentation::RecursiveSplitParams& split,
     return wood && split.rule == segmentation::SplitRule::kSpheres;
 }
 
+namespace {
+
+/// Whether the wood step can tell parts by colour in `cloud` (apply_wood_parts and check_eps's
+/// recount): a cloud without colours passes through it.
+bool wood_coloured(const io::Blob& cloud) {
+    return cloud.size() > 0 && !io::colour_fields(cloud).empty();
+}
+
+}  // namespace
+
 Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p) {
     const std::size_t n = in.size();
-    if (n == 0 || io::colour_fields(in).empty()) {
+    if (!wood_coloured(in)) {
         return {
             std::move(in), "wood_parts: no colours, nothing dropped", {"wood_parts", n, n, {}}, {}};
     }
@@ -515,13 +525,14 @@ Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p) {
 
 namespace {
 
-/// The value `name` a step of the chain recorded (dbscan's eps, the split's claimed share).
+/// The value `name` the last such step of the chain recorded (dbscan's eps, the split's claimed
+/// share): where the chain counted again (kMostlyWood), the count's own.
 std::optional<double> step_value(const ChainResult& chain,
                                  const std::string& step,
                                  const std::string& name) {
-    for (const StepRecord& record : chain.steps) {
-        for (const auto& [key, value] : record.values) {
-            if (record.name == step && key == name) {
+    for (auto record = chain.steps.rbegin(); record != chain.steps.rend(); ++record) {
+        for (const auto& [key, value] : record->values) {
+            if (record->name == step && key == name) {
                 return value;
             }
         }
@@ -562,7 +573,11 @@ constexpr double kNoBall = 0.15;
 /// counted alone as one "fruit" the size of the tree, 0.013 (1887: 1 counted of 50).
 constexpr double kNoShell = 0.03;
 /// A group of the pale points whose spacing is over this many times the cloud's is a scatter
-/// of stray colours, no fruit's surface (pale_fruit in by_shape).
+/// of stray colours, no fruit's surface (pale_fruit in by_shape), and the pale points are not
+/// counted. A test of the path, not of one candidate: as a test in claims() of every candidate
+/// (session 43), the scattered group claimed nothing, its sibling then passed as the group
+/// whose other claims little, and 2958 went 120 -> 127 of 120; a scattered group's claim says
+/// the colours' split is no clean one.
 constexpr double kScattered = 4;
 /// The green points are kept instead of the rule where their centres claim at least this much
 /// more of their points.
@@ -599,18 +614,22 @@ constexpr double kBranchAgain = 0.5;
 constexpr double kLargestFruit = 0.1;
 
 /// The diagonal of the box holding the middle 98 % of `cloud`'s points along each axis (stray
-/// outliers aside; non-finite coordinates ignored); 0 for an empty cloud.
+/// outliers aside; non-finite coordinates ignored); 0 for an empty cloud. Read on an even stride
+/// of about kSpreadSample points: a 1 % tail needs no more (every point of a 1M-point cloud
+/// took 0.1 s of its 1.4 s count, a candidate's spread being read several times).
+constexpr std::size_t kSpreadSample = 100000;
 double spread(const io::Blob& cloud) {
     if (cloud.size() == 0) {
         return 0;
     }
     const io::XyzPoints points(cloud);
     const XyzView& v = points.view();
+    const std::size_t stride = std::max<std::size_t>(1, v.size / kSpreadSample);
     double d2 = 0;
-    std::vector<double> along(v.size);
+    std::vector<double> along((v.size + stride - 1) / stride);
     for (int a = 0; a < 3; ++a) {
-        for (std::size_t i = 0; i < v.size; ++i) {
-            const pcl::PointXYZ q = v[i];
+        for (std::size_t i = 0; i < along.size(); ++i) {
+            const pcl::PointXYZ q = v[i * stride];
             along[i] = a == 0 ? q.x : a == 1 ? q.y : q.z;
         }
         const double lo = percentile_of_finite(along, 1), hi = percentile_of_finite(along, 99);
@@ -709,12 +728,57 @@ ChainResult chain_of(io::Blob in, const ChainParams& p, const Progress& progress
 /// Whether run_chain() ends with the wood step.
 bool wood_step(const ChainParams& p) { return p.split && drops_wood(*p.split, p.wood); }
 
+/// The points of `labelled` in a cluster (label not 0).
+Indices counted_points(const io::Blob& labelled) {
+    Indices out;
+    if (labelled.size() > 0) {
+        const std::vector<std::uint32_t> labels = io::labels(labelled, "label");
+        for (std::uint32_t i = 0; i < labels.size(); ++i) {
+            if (labels[i] != 0) {
+                out.push_back(i);
+            }
+        }
+    }
+    return out;
+}
+
+/// Where the wood step told the wood apart and dropped this share of the counted points or more,
+/// the split had measured the fruit radius mostly on the wood: the points it kept are counted
+/// again from DBSCAN on, at their own spacing and fruit radius. On the 52 scenes of the matrix
+/// whose wood step told a giant apart (session 43, by hand: the kept points recounted), the 12
+/// that dropped 0.76-0.98 of the points: 10 up, among them small fruit beside a trunk in their
+/// own hues (2453, currants of 2.2 mm beside near-black bark, split with R 9 mm: F1 0 -> 0.64;
+/// 2825, 2911, 3207, 3212), 2 down by 0.005-0.01; 2 that dropped 0.68-0.69 went down (0.77 ->
+/// 0.61, 0.85 -> 0.83).
+constexpr double kMostlyWood = 0.75;
+
 }  // namespace
 
 ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progress) {
     ChainResult out = chain_of(std::move(in), p, progress);
-    if (wood_step(p)) {
+    if (!wood_step(p)) {
+        return out;
+    }
+    const std::size_t counted = counted_points(out.labelled).size();
+    out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
+    const Indices kept = counted_points(out.labelled);
+    if (step_value(out, "wood_parts", "giants").value_or(0) > 0 && !kept.empty() &&
+        static_cast<double>(kept.size()) <= (1 - kMostlyWood) * static_cast<double>(counted)) {
+        const double first = step_value(out, "recursive_split", "fruit_radius").value_or(0);
+        ChainParams again = p;  // the points kept passed the steps before DBSCAN already
+        again.crop.reset();
+        again.voxel.reset();
+        again.knn.reset();
+        io::Blob recount = io::copy_points(out.labelled, kept);
+        out = rest_of_chain(std::move(out), std::move(recount), again, progress);
         out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
+        out.warnings.push_back(
+            "the wood step dropped " + std::to_string(counted - kept.size()) + " of " +
+            std::to_string(counted) + " counted points: the fruit radius " + format_rounded(first) +
+            " was measured mostly on the wood, and the " + std::to_string(kept.size()) +
+            " points kept were counted again (fruit radius " +
+            format_rounded(step_value(out, "recursive_split", "fruit_radius").value_or(0)) +
+            "); the warnings before this one are of the first count");
     }
     return out;
 }
@@ -892,10 +956,9 @@ ChainResult by_shape(io::Blob in,
             const auto spacing = [](const ChainResult& r) {
                 return step_value(r, "dbscan", "spacing").value_or(0);
             };
-            double dense = spacing(run);
-            if (by_rule && spacing(*by_rule) > 0) {
-                dense = dense > 0 ? std::min(dense, spacing(*by_rule)) : spacing(*by_rule);
-            }
+            const double own = spacing(run), of_rule = by_rule ? spacing(*by_rule) : 0.0;
+            const double dense = own > 0 && of_rule > 0 ? std::min(own, of_rule)  // 0: unknown
+                                                        : std::max(own, of_rule);
             if (!kept || (dense > 0 && spacing(kept->run) > kScattered * dense)) {
                 return std::nullopt;
             }
@@ -1052,7 +1115,7 @@ EpsCheck check_eps(const ChainResult& chain,
                 labels = segmentation::recursive_split(XyzView(points), std::move(labels), *p.split)
                              .labels;
             }
-            if (wood_step(p) && !io::colour_fields(labelled).empty()) {  // as apply_wood_parts
+            if (wood_step(p) && wood_coloured(labelled)) {
                 labels =
                     filters::wood_parts(io::colours(labelled), std::move(labels), *p.wood).labels;
             }

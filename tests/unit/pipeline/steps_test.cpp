@@ -607,6 +607,42 @@ TEST(Chain, BarkPiecesColouredLikeTheTrunkAreNotCounted) {
         << "without the wood step the bark pieces are counted";
 }
 
+/// Currant-like fruit (5 mm, yellow-green at hue 67, in bunches of 6-12) beside a trunk of 55 mm
+/// and six branches of near-black bark (60, 50, 45), sampled as structure from motion (the matrix's
+/// scene 2453, smaller): fruit and bark pass the "not foliage" rule together, the fruit a few per
+/// cent of its points, too few to be a group of their own; the split measured R on the wood (44
+/// counted of 60, F1 0.21) and the wood step dropped nearly every point. The points it kept are
+/// counted again, at the fruit's own radius.
+TEST(Chain, SmallFruitLeftByTheWoodStepAreCountedAgainAtTheirOwnSize) {
+    scenes::SceneParams sp = bunches_beside_bark(0.005, {6, 12}, {175, 190, 60}, 6, {60, 50, 45});
+    sp.fruit_count = 60;
+    sp.canopy = {0.4, 0.4, 0.3};
+    sp.touch_gap = 0.0003;
+    sp.trunk_radius = 0.055;
+    sp.seed = 136137;
+    const scenes::Rendered r = scenes::render(scenes::make_scene(sp), {.mode = scenes::Mode::kSfm,
+                                                                       .voxel = 0.0012,
+                                                                       .noise = 0.03,
+                                                                       .shading = 0.6,
+                                                                       .seed = sp.seed});
+    const double present = present_in(r);
+    const ChainResult c = run_chain(scenes::to_blob(r), preset("dense"));
+    std::vector<double> radii;  // of the first split and of the count again
+    for (const StepRecord& s : c.steps) {
+        if (s.name == "recursive_split") {
+            radii.push_back(s.values.at(1).second);
+        }
+    }
+    ASSERT_EQ(radii.size(), 2U);
+    EXPECT_GT(radii[0], 3 * 0.005) << "the first split measured the wood";
+    EXPECT_NEAR(radii[1], 0.005, 0.2 * 0.005);
+    EXPECT_NEAR(static_cast<double>(summarize(c.labelled, 1).clusters.size()), present,
+                0.2 * present);
+    EXPECT_TRUE(std::any_of(c.warnings.begin(), c.warnings.end(), [](const std::string& w) {
+        return w.find("counted again") != std::string::npos;
+    }));
+}
+
 /// A cloud cropped around one red apple (and whatever of its neighbours the box holds): the
 /// fruit radius is over a tenth of the points' spread, as for a lone blob that is no fruit, so no
 /// candidate is judged fruit by its claim; the rule, the only candidate, is still counted, with a
