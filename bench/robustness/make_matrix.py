@@ -288,6 +288,11 @@ SHAPE_PARTS = [
 # single, 30 on a tree of 1 m) of magenta (200,40,130: hue 326, deep and saturated, between the
 # purple and the pink fruit, as dragon fruit and some cacao pods are); the silver bark stays
 # among the five; colour noise and dense clouds kept.
+# 'held-out-31' (3341-3440, session 43, after held-out-30 was scored, before any method for it)
+# adds feijoa-like fruit (22 mm, aspect 1.4, single or in pairs, 70 on a tree of 0.7 m) of teal
+# (70,140,130: hue 171, just past the leaves' band at its blue-green edge, as every green so far
+# sat at its yellow edge or inside it; unripe blueberries and juniper berries are such); the
+# silver bark stays among the five; colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -348,10 +353,15 @@ WOOD_PARTS = [
      {'pod': (0.045, '--species apple --fruit-radius 0.045 --bunch-min 1 --bunch-max 1 '
                      '--fruit-count 30 --canopy 1.0,1.0,0.8')},
      {'magenta': (200, 40, 130)}, set(), {**BARK, 'silver': (175, 170, 160)}),
+    ('held-out-31', 2058,
+     {'feijoa': (0.022, '--species apple --fruit-radius 0.022 --bunch-min 1 --bunch-max 2 '
+                        '--touch-gap 0.002 --fruit-count 70 --canopy 0.7,0.7,0.55')},
+     {'teal': (70, 140, 130)}, set(), {**BARK, 'silver': (175, 170, 160)}),
 ]
 COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30'}
-DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30'}
+                      'held-out-30', 'held-out-31'}
+DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
+               'held-out-31'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -366,6 +376,7 @@ ASPECTS['pomelo'] = 0.9
 ASPECTS['wall'] = 0.9
 ASPECTS['chili'] = 2.0
 ASPECTS['pod'] = 2.2
+ASPECTS['feijoa'] = 1.4
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
