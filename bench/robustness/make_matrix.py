@@ -288,7 +288,7 @@ SHAPE_PARTS = [
 # single, 30 on a tree of 1 m) of magenta (200,40,130: hue 326, deep and saturated, between the
 # purple and the pink fruit, as dragon fruit and some cacao pods are); the silver bark stays
 # among the five; colour noise and dense clouds kept.
-# 'held-out-31' (3341-3440, session 43, after held-out-30 was scored, before any method for it)
+# 'held-out-31' (3341-3440, session 43, before held-out-30 was scored and any method for either)
 # adds feijoa-like fruit (22 mm, aspect 1.4, single or in pairs, 70 on a tree of 0.7 m) of teal
 # (70,140,130: hue 171, just past the leaves' band at its blue-green edge, as every green so far
 # sat at its yellow edge or inside it; unripe blueberries and juniper berries are such); the
