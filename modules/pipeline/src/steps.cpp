@@ -761,9 +761,10 @@ ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progres
     }
     const std::size_t counted = counted_points(out.labelled).size();
     out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
-    const Indices kept = counted_points(out.labelled);
-    if (step_value(out, "wood_parts", "giants").value_or(0) > 0 && !kept.empty() &&
-        static_cast<double>(kept.size()) <= (1 - kMostlyWood) * static_cast<double>(counted)) {
+    const StepRecord& wood = out.steps.back();  // its points_out: the points it kept counted
+    if (step_value(out, "wood_parts", "giants").value_or(0) > 0 && wood.points_out > 0 &&
+        static_cast<double>(wood.points_out) <= (1 - kMostlyWood) * static_cast<double>(counted)) {
+        const Indices kept = counted_points(out.labelled);
         const double first = step_value(out, "recursive_split", "fruit_radius").value_or(0);
         ChainParams again = p;  // the points kept passed the steps before DBSCAN already
         again.crop.reset();
