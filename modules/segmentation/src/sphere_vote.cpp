@@ -813,16 +813,19 @@ void assign(const XyzView& points,
 /// two touching spheres narrow there to a waist (about half). A width is the median distance
 /// from the line of the points in a slab ±0.1 R across it, within 1.3 × the larger radius (a
 /// neighbour's points given to one of the two do not widen it); a slab of fewer than 3 points
-/// says nothing. Centres are tried within `near` × R of each other, leftovers within 2.5 R of a
-/// centre. Labels are merged in place (into the fruit's); returns the fruit centres merged into
-/// another.
+/// says nothing. Centres are tried within `join_far` × R of each other, leftovers within 2.5 R
+/// of a centre; centres beyond `join_near` × R also need the points at the join (±0.25 R: a
+/// slab of ±0.1 R held 5-10 points of a pod at 8 spacings, too few for its shape) to ring the
+/// line: their offsets from it, p, have a second moment sum(p pᵀ) whose smaller eigenvalue
+/// across the line is at least `join_ring` × the larger (a pod's cross-section is round, 1; two
+/// fruit side by side meet in a band, or the cap of one fruit seen end-on: about 1/aspect²). Labels
+/// are merged in place (into the fruit's); returns the fruit centres merged into another.
 std::uint32_t join_elongated(const XyzView& points,
                              const std::vector<std::uint32_t>& members,
                              std::vector<std::uint32_t>& labels,
                              const std::vector<Peak>& peaks,
                              double R,
-                             double near,
-                             double convex) {
+                             const SphereVoteParams& params) {
     const auto count = static_cast<std::uint32_t>(peaks.size());
     std::uint32_t top = count;
     for (auto i : members) {
@@ -847,7 +850,7 @@ std::uint32_t join_elongated(const XyzView& points,
             centre[l] /= static_cast<double>(of[l].size());
         }
     }
-    const auto one_body = [&](std::uint32_t j, std::uint32_t k) {
+    const auto one_body = [&](std::uint32_t j, std::uint32_t k, bool ring) {
         const V3 axis = centre[k] - centre[j];
         const double d = axis.norm();
         const V3 u = axis / d;
@@ -856,15 +859,20 @@ std::uint32_t join_elongated(const XyzView& points,
         const double at[3] = {0, d * split, d};
         const double within = 1.3 * std::max(radius[j], radius[k]);
         std::vector<double> across[3];
+        Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();  // of the join's offsets from the line
         for (const auto* part : {&of[j], &of[k]}) {
             for (auto i : *part) {
                 const V3 q = vec(points[i]) - centre[j];
                 const double t = q.dot(u);
-                const double rho = (q - t * u).norm();
+                const V3 p = q - t * u;
+                const double rho = p.norm();
                 for (int w = 0; w < 3; ++w) {
                     if (std::abs(t - at[w]) <= 0.1 * R && rho <= within) {
                         across[w].push_back(rho);
                     }
+                }
+                if (std::abs(t - at[1]) <= 0.25 * R && rho <= within) {
+                    moment += p * p.transpose();
                 }
             }
         }
@@ -872,7 +880,14 @@ std::uint32_t join_elongated(const XyzView& points,
             return false;
         }
         const double w0 = median(across[0]), w1 = median(across[1]), w2 = median(across[2]);
-        return w1 >= convex * (w0 + (w2 - w0) * split);
+        if (w1 < params.join_convex * (w0 + (w2 - w0) * split)) {
+            return false;
+        }
+        if (!ring) {
+            return true;
+        }
+        const V3 e = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(moment).eigenvalues();
+        return e(1) >= params.join_ring * e(2);  // e(0) ~ 0: along the line
     };
     std::vector<std::uint32_t> root(top);
     std::iota(root.begin(), root.end(), 0u);
@@ -886,9 +901,10 @@ std::uint32_t join_elongated(const XyzView& points,
     for (std::uint32_t j = 0; j < count; ++j) {
         for (std::uint32_t k = j + 1; k < top; ++k) {
             const double d = (centre[k] - centre[j]).norm();
-            const double window = k < count ? near : 2.5;
+            const double window = k < count ? std::max(params.join_near, params.join_far) : 2.5;
+            const bool ring = k < count && d >= params.join_near * R;
             if (of[j].empty() || of[k].empty() || !(d > 0 && d < window * R) ||
-                find(j) == find(k) || (k >= count && find(k) != k) || !one_body(j, k)) {
+                find(j) == find(k) || (k >= count && find(k) != k) || !one_body(j, k, ring)) {
                 continue;
             }
             merged += k < count ? 1 : 0;
@@ -1039,12 +1055,14 @@ void SphereVoteParams::validate() const {
     if (max_samples < 100) {
         throw InvalidArgument("sphere_vote: max_samples must be >= 100");
     }
-    if (!(join_near >= 0 && std::isfinite(join_near)) || !(join_convex > 0 && join_convex <= 2) ||
+    if (!(join_near >= 0 && std::isfinite(join_near)) ||
+        !(join_far >= 0 && std::isfinite(join_far)) || !(join_ring >= 0 && join_ring <= 1) ||
+        !(join_convex > 0 && join_convex <= 2) ||
         !(join_resolution >= 0 && std::isfinite(join_resolution)) ||
         !(coarse_joins >= 0 && std::isfinite(coarse_joins))) {
         throw InvalidArgument(
-            "sphere_vote: join_near, join_resolution and coarse_joins must be >= 0, join_convex "
-            "in (0, 2]");
+            "sphere_vote: join_near, join_far, join_resolution and coarse_joins must be >= 0, "
+            "join_ring in [0, 1], join_convex in (0, 2]");
     }
     if (!(min_resolution >= 0 && std::isfinite(min_resolution))) {
         throw InvalidArgument("sphere_vote: min_resolution must be >= 0");
@@ -1359,12 +1377,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // coarser where the joins are many (coarse_joins).
     std::uint32_t joined = 0;
     if (params.join_near > 0 && R >= params.join_resolution * ss) {
-        joined =
-            join_elongated(points, members, labels, peaks, R, params.join_near, params.join_convex);
+        joined = join_elongated(points, members, labels, peaks, R, params);
     } else if (params.join_near > 0) {
         std::vector<std::uint32_t> trial = labels, counted = labels;
-        const std::uint32_t joins =
-            join_elongated(points, members, trial, peaks, R, params.join_near, params.join_convex);
+        const std::uint32_t joins = join_elongated(points, members, trial, peaks, R, params);
         const double fewer = parts(labels, members) - parts(trial, members);
         const std::uint32_t count =
             finish(counted, params.min_cluster_size, params.min_relative_size,

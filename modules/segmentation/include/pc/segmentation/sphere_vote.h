@@ -71,8 +71,14 @@ struct SphereVoteParams {
     /// centres) are one fruit; where R spans join_resolution spacings (0 near: never), and
     /// coarser only where the joins would leave at least coarse_joins × the count's parts fewer
     /// (touching round fruit sampled so coarsely also read as one body now and then, but seldom
-    /// as many: docs/robustness.md, session 34)
+    /// as many: docs/robustness.md, session 34). Centres join_near to join_far × R apart (pods
+    /// and chili split in two lie up to 2.7 R apart) are joined only where the points at the
+    /// join (±0.25 R) also ring the line between them: across it, their smaller second moment at
+    /// least join_ring × the larger (the pods of scene 3312 read 0.89-0.99; dates side by side
+    /// in 3081, whose points meet in a band, from 0.07)
     double join_near = 1.6;
+    double join_far = 2.6;
+    double join_ring = 0.5;
     double join_convex = 0.9;
     double join_resolution = 6;
     double coarse_joins = 0.2;
@@ -127,8 +133,9 @@ struct SphereVoteResult {
 ///     DBSCAN cluster as one more part, or are dropped when that part is a flat `sheet`. Pieces
 ///     of one fruit that DBSCAN separated join their peak.
 ///  5. Elongated fruit: two parts close together whose points form one convex body (no waist
-///     between them, as two touching fruit have) are one fruit (join_near, join_convex), where
-///     R spans join_resolution spacings, and coarser where such pairs are many (coarse_joins).
+///     between them, as two touching fruit have) are one fruit (join_near, join_convex; further
+///     apart also ringing the line between them: join_far, join_ring), where R spans
+///     join_resolution spacings, and coarser where such pairs are many (coarse_joins).
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
                                            std::vector<std::uint32_t> labels,
