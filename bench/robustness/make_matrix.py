@@ -47,7 +47,7 @@ DENSE_SPACING = 0.0008                           # ... down to a spacing of 0.8 
 
 
 def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False,
-         barks=BARK):
+         barks=BARK, featured=None):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
@@ -58,13 +58,21 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
     dense: half the surface, SfM and stripes scenes are drawn at 30 or 45 spacings a radius
     where the spacing stays >= 0.8 mm (real SfM exports of apples sit near 75 at 0.46 mm; the
     spacing is set by the cameras, not by the fruit); drawn from the scene's own seed, so the
-    other draws keep their order."""
+    other draws keep their order.
+    featured: (families, colours) new in this part, each drawn for a quarter of its scenes (drawn
+    uniformly, a new family of 40 came up in 2 of 100 scenes, a new colour in none)."""
     for i in ids:
-        family = rng.choice(list(families))
+        if featured and rng.random() < 0.25:
+            family = rng.choice(sorted(featured[0]))
+        else:
+            family = rng.choice(list(families))
         mode = rng.choice(MODES)
         rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
         noise = rng.choice(NOISE) if mode in SAMPLED else 0
-        colour = rng.choice(list(colours))
+        if featured and rng.random() < 0.25:
+            colour = rng.choice(sorted(featured[1]))
+        else:
+            colour = rng.choice(list(colours))
         shading = rng.choice([0, 0.6])
         units = rng.choice(list(UNITS))
         seed = rng.randrange(1, 10**6)
@@ -293,6 +301,12 @@ SHAPE_PARTS = [
 # (70,140,130: hue 171, just past the leaves' band at its blue-green edge, as every green so far
 # sat at its yellow edge or inside it; unripe blueberries and juniper berries are such); the
 # silver bark stays among the five; colour noise and dense clouds kept.
+# 'held-out-32' (3441-3540, session 45, before held-out-31 was scored and any method for it)
+# adds saturn-peach-like fruit (30 mm, oblate aspect 0.55: the flattest so far, whose normals meet
+# on a ring, not at a point; single or in pairs, 60 on a tree of 0.8 m) of kiwi brown
+# (130,100,65: the colour of the bark's browns, a dE of about 12 from brown bark; kiwifruit,
+# sapodilla and russet pears are such), each in a quarter of the part's scenes (FEATURED_PARTS);
+# the silver bark stays among the five; colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -357,11 +371,16 @@ WOOD_PARTS = [
      {'feijoa': (0.022, '--species apple --fruit-radius 0.022 --bunch-min 1 --bunch-max 2 '
                         '--touch-gap 0.002 --fruit-count 70 --canopy 0.7,0.7,0.55')},
      {'teal': (70, 140, 130)}, set(), {**BARK, 'silver': (175, 170, 160)}),
+    ('held-out-32', 2059,
+     {'saturn': (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 --bunch-max 2 '
+                        '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
+     {'kiwi-brown': (130, 100, 65)}, set(), {**BARK, 'silver': (175, 170, 160)}),
 ]
 COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30', 'held-out-31'}
+                      'held-out-30', 'held-out-31', 'held-out-32'}
 DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
-               'held-out-31'}
+               'held-out-31', 'held-out-32'}
+FEATURED_PARTS = {'held-out-32'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -377,6 +396,7 @@ ASPECTS['wall'] = 0.9
 ASPECTS['chili'] = 2.0
 ASPECTS['pod'] = 2.2
 ASPECTS['feijoa'] = 1.4
+ASPECTS['saturn'] = 0.55
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
@@ -387,7 +407,8 @@ for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOO
                   lambda family, colour, mode, part=part: part,
                   wood=part in {w[0] for w in WOOD_PARTS},
                   color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS,
-                  barks=barks[0] if barks else BARK)
+                  barks=barks[0] if barks else BARK,
+                  featured=(new_families, new_colours) if part in FEATURED_PARTS else None)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
