@@ -818,7 +818,7 @@ void assign(const XyzView& points,
 /// slab of ±0.1 R held 5-10 points of a pod at 8 spacings, too few for its shape) to ring the
 /// line: their offsets from it, p, have a second moment sum(p pᵀ) whose smaller eigenvalue
 /// across the line is at least `join_ring` × the larger (a pod's cross-section is round, 1; two
-/// fruit side by side meet in a band, or the cap of one fruit seen end-on: about 1/aspect²). Labels
+/// fruit side by side meet in a band, or one's cap cut across its length: about 1/aspect²). Labels
 /// are merged in place (into the fruit's); returns the fruit centres merged into another.
 std::uint32_t join_elongated(const XyzView& points,
                              const std::vector<std::uint32_t>& members,
@@ -871,7 +871,7 @@ std::uint32_t join_elongated(const XyzView& points,
                         across[w].push_back(rho);
                     }
                 }
-                if (std::abs(t - at[1]) <= 0.25 * R && rho <= within) {
+                if (ring && std::abs(t - at[1]) <= 0.25 * R && rho <= within) {
                     moment += p * p.transpose();
                 }
             }

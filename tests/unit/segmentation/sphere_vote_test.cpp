@@ -1,5 +1,3 @@
-
-
 // sphere_vote: hollow and solid bunches cut into their spheres, the radius found, leaves
 // dropped, fragments joined; the same partition after scaling and rotating.
 #include <cmath>
@@ -323,9 +321,9 @@ TEST(SphereVote, ElongatedFruitAreOneFruitTouchingSpheresStayTwo) {
 TEST(SphereVote, PodsSplitFarApartAreJoinedWhereTheirWallRingsTheJoin) {
     // Pod-like fruit (aspect 2.2) measured at the size of their dates-like neighbours give two
     // centres 1.9 R apart, beyond join_near; they are joined where the points at the join ring
-    // the line between the centres (about 0.96 here). Dates (aspect 1.8) lying side by side,
+    // the line between the centres (0.88-0.96 here). Dates (aspect 1.8) lying side by side,
     // touching along their length, also give two centres each, joined; the pairs across the two
-    // dates have a waist (and their join reads 0.06-0.1 as a ring): they stay two.
+    // dates have a waist: they stay two.
     Scene s;
     const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
                                                {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
