@@ -753,6 +753,12 @@ TEST(SphereVote, NoiseStaysNoiseAndBadInputIsRefused) {
                  InvalidArgument);
     EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.min_two_way = 0.5}),
                  InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.join_far = -1}),
+                 InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.join_ring = -0.1}),
+                 InvalidArgument);
+    EXPECT_THROW((void)sphere_vote(XyzView(few), {1, 1, 2, 2, 2}, {.join_ring = 1.5}),
+                 InvalidArgument);
 }
 
 }  // namespace
