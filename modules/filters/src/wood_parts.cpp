@@ -14,6 +14,11 @@ namespace pc::filters {
 
 namespace {
 
+/// The wood's pieces found before a gap is judged: a spread to judge it by (one or two bark
+/// pieces a few ΔE apart are no spread: 1999, a bark piece 0.6 ΔE from the trunk's colour and
+/// five at 3.8-4.7 that were counted as fruit).
+constexpr std::size_t kPieces = 3;
+
 using Lab = std::array<double, 3>;
 
 double distance(const Lab& a, const Lab& b) {
@@ -34,6 +39,9 @@ void WoodPartsParams::validate() const {
     }
     if (!(min_apart >= 0 && std::isfinite(min_apart))) {
         throw InvalidArgument("wood_parts: min_apart must be >= 0");
+    }
+    if (!((gap == 0 || gap >= 1) && std::isfinite(gap))) {
+        throw InvalidArgument("wood_parts: gap must be 0 or >= 1");
     }
 }
 
@@ -158,8 +166,24 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
         r.fruit_colour_spread = r.giants == 0 ? spread : r.fruit_colour_spread;
         ++r.giants;
         drop[g] = true;
+        // The parts nearer the giant's colour than the fruit's, nearest first, are the wood's
+        // pieces up to a gap (params.gap, after kPieces of them); the parts past it are fruit.
+        std::vector<std::size_t> nearer;
         for (std::size_t j = 0; j < others.size(); ++j) {
-            drop[others[j]] = drop[others[j]] || distance(mean[others[j]], colour) > to_giant[j];
+            if (distance(mean[others[j]], colour) > to_giant[j]) {
+                nearer.push_back(j);
+            }
+        }
+        std::stable_sort(nearer.begin(), nearer.end(),
+                         [&](std::size_t a, std::size_t b) { return to_giant[a] < to_giant[b]; });
+        for (std::size_t k = 0; k < nearer.size(); ++k) {
+            const double before = k == 0 ? 0.0 : to_giant[nearer[k - 1]];
+            const double here = to_giant[nearer[k]];
+            if (k >= kPieces && params.gap > 0 && here > params.gap * before &&
+                here > before + params.min_apart) {
+                break;
+            }
+            drop[others[nearer[k]]] = true;
         }
     }
     for (const std::uint32_t l : others) {

@@ -154,6 +154,40 @@ TEST(WoodParts, PartsNearerTheFruitsColourStay) {
     EXPECT_EQ(r.labels.back(), 0u);                  // the part at 0.75 dropped
 }
 
+TEST(WoodParts, BlushedFruitPastTheBarksSpreadStay) {
+    // Yellow-green fruit blushed red (parts 1..40, each part's colour the mix of its blush, most
+    // of them little blushed: (k / 39)³, k = 0..39) beside reddish-brown bark (the giant, 6000
+    // points) and 6 bark pieces spread about its colour (up to 6 ΔE). The 9 most blushed
+    // fruit lie nearer the bark's colour than the fruit's median colour (26-39 ΔE from the
+    // bark's, the fruit's 60), but past a gap from the bark pieces: they stay.
+    constexpr io::Rgb kYellowGreen{160 / 255.0f, 185 / 255.0f, 70 / 255.0f};
+    constexpr io::Rgb kRed{185 / 255.0f, 40 / 255.0f, 45 / 255.0f};
+    constexpr io::Rgb kRedBark{120 / 255.0f, 65 / 255.0f, 55 / 255.0f};
+    Count c;
+    for (std::uint32_t l = 1; l <= 40; ++l) {
+        const float t = std::pow(static_cast<float>(l - 1) / 39, 3.0f);
+        c.add(l, 100,
+              {kYellowGreen.r + t * (kRed.r - kYellowGreen.r),
+               kYellowGreen.g + t * (kRed.g - kYellowGreen.g),
+               kYellowGreen.b + t * (kRed.b - kYellowGreen.b)});
+    }
+    c.add(41, 6000, kRedBark);
+    for (std::uint32_t l = 42; l < 48; ++l) {
+        c.add(l, 100, kRedBark, 0.004f * static_cast<float>(l - 42));
+    }
+    const WoodPartsResult r = wood_parts(c.colours, c.labels);
+    EXPECT_EQ(r.giants, 1u);
+    EXPECT_EQ(r.dropped, 6u);
+    EXPECT_EQ(r.count, 40u);
+    for (std::size_t i = 0; i < c.labels.size(); ++i) {
+        EXPECT_EQ(r.labels[i] != 0, c.labels[i] <= 40) << "point " << i << " of " << c.labels[i];
+    }
+    // Every part nearer the bark's colour than the fruit's going (no gap), the reddest go too.
+    const WoodPartsResult nearest = wood_parts(c.colours, c.labels, {.gap = 0});
+    EXPECT_EQ(nearest.giants, 1u);
+    EXPECT_LT(nearest.count, 35u);
+}
+
 TEST(WoodParts, PointsWithoutAColourAreLeftOutOfTheMeans) {
     Count c = fruit();
     c.add(41, 6000, kBark);
@@ -174,6 +208,8 @@ TEST(WoodParts, RefusesMismatchedSizesAndBadParameters) {
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.share = 1.5}), InvalidArgument);
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.apart = 0}), InvalidArgument);
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.apart = NAN}), InvalidArgument);
+    EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.gap = 0.5}), InvalidArgument);
+    EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.gap = INFINITY}), InvalidArgument);
 }
 
 }  // namespace

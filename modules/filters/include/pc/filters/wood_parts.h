@@ -28,6 +28,16 @@ struct WoodPartsParams {
     /// ... and by this CIELAB ΔE at the least (a just noticeable difference: exact colours, such
     /// as a mask export's, have no spread)
     double min_apart = 2.3;
+    /// Of the parts nearer the wood's colour than the fruit's, taken nearest first, the wood's
+    /// pieces end at a gap: a part more than this many times as far from the wood's colour as
+    /// the one before it (and min_apart further), after at least 3 pieces. The parts past it are
+    /// fruit the fruit's median colour left on the wood's side (scene 3527: yellow-green fruit
+    /// blushed red over most of their surface, 21-44 ΔE from reddish bark's colour, its pieces
+    /// 0.4-4.6). Bark pieces spread evenly about the wood's colour, up to 11-15 ΔE out in scenes
+    /// 2197 and 3304 (150-180 pieces each); in 64 of the 66 matrix scenes whose wood was told
+    /// apart no part lay past such a gap (2052: 5.0 then 11.8 ΔE, 2.4 times; at 2 times, 11
+    /// scenes kept one to five bark pieces more). 0: every part nearer goes
+    double gap = 3;
     void validate() const;
 };
 
@@ -50,8 +60,10 @@ struct WoodPartsResult {
 /// median colour (per channel, each part one vote) of the parts nearer it than the giant's
 /// (two means, one held at the giant's colour, started from the parts further from it than the
 /// median part). Where the giant's colour lies more than `apart` × those parts' spread (and
-/// `min_apart`) from the fruit's, the giant is the wood and goes, with every part nearer its
-/// colour than the fruit's (bark pieces). Parts are left alone where no giant is told apart (no
+/// `min_apart`) from the fruit's, the giant is the wood and goes, with the parts nearer its
+/// colour than the fruit's (bark pieces) up to a gap in their distances from its colour (`gap`:
+/// fruit the median colour left on the wood's side, such as the reddest of blushed fruit beside
+/// reddish bark, lie past it). Parts are left alone where no giant is told apart (no
 /// giant; a giant coloured as the parts are: mask colours, brown fruit beside brown bark, a
 /// merged bunch). Throws pc::InvalidArgument when the sizes differ.
 [[nodiscard]] WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
