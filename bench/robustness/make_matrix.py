@@ -307,6 +307,13 @@ SHAPE_PARTS = [
 # (130,100,65: the colour of the bark's browns, a dE of about 12 from brown bark; kiwifruit,
 # sapodilla and russet pears are such), each in a quarter of the part's scenes (FEATURED_PARTS);
 # the silver bark stays among the five; colour noise and dense clouds kept.
+# 'held-out-33' (3541-3640, session 46, after held-out-32 was scored, before any method for it)
+# adds mulberry-like fruit (9 mm, aspect 1.6, in bunches of 2-5 touching: small, elongated and
+# crowded, as mulberries and elderberry clusters are; 160 on a tree of 0.6 m) of ivory
+# (245,240,225: saturation 0.08, value 0.96, the nearest to white of any natural colour so far:
+# white currants, snowberries; a natural cloud whose fruit look like a mask export's white),
+# each in a quarter of the part's scenes (FEATURED_PARTS); the silver bark stays among the
+# five; colour noise and dense clouds kept.
 WOOD_PARTS = [
     ('wood', 2043, {}, {}, {'gooseberry', 'pale-green'}),
     ('held-out-17', 2044,
@@ -375,12 +382,16 @@ WOOD_PARTS = [
      {'saturn': (0.030, '--species apple --fruit-radius 0.03 --bunch-min 1 --bunch-max 2 '
                         '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
      {'kiwi-brown': (130, 100, 65)}, set(), {**BARK, 'silver': (175, 170, 160)}),
+    ('held-out-33', 2060,
+     {'mulberry': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 2 --bunch-max 5 '
+                          '--touch-gap 0.0005 --fruit-count 160 --canopy 0.6,0.6,0.5')},
+     {'ivory': (245, 240, 225)}, set(), {**BARK, 'silver': (175, 170, 160)}),
 ]
 COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30', 'held-out-31', 'held-out-32'}
+                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33'}
 DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
-               'held-out-31', 'held-out-32'}
-FEATURED_PARTS = {'held-out-32'}
+               'held-out-31', 'held-out-32', 'held-out-33'}
+FEATURED_PARTS = {'held-out-32', 'held-out-33'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -397,6 +408,7 @@ ASPECTS['chili'] = 2.0
 ASPECTS['pod'] = 2.2
 ASPECTS['feijoa'] = 1.4
 ASPECTS['saturn'] = 0.55
+ASPECTS['mulberry'] = 1.6
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
