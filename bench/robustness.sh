@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The condition matrix of docs/robustness.md: 2040 scenes (bench/robustness/scenes.txt) counted by
+# The condition matrix of docs/robustness.md: the scenes of bench/robustness/scenes.txt counted by
 # each method, scored against their truth. One command:
 #     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
