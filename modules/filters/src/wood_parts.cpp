@@ -14,9 +14,9 @@ namespace pc::filters {
 
 namespace {
 
-/// The wood's pieces found before a gap is judged: a spread to judge it by (one or two bark
-/// pieces a few ΔE apart are no spread: 1999, a bark piece 0.6 ΔE from the trunk's colour and
-/// five at 3.8-4.7 that were counted as fruit).
+/// The wood's pieces found before a gap is judged: a spread to judge it by (one or two pieces
+/// are none: judged from the second piece, scene 1999's five bark pieces 3.8-4.7 ΔE from the
+/// trunk's colour, after one at 0.6, were kept as fruit).
 constexpr std::size_t kPieces = 3;
 
 using Lab = std::array<double, 3>;

@@ -158,8 +158,8 @@ TEST(WoodParts, BlushedFruitPastTheBarksSpreadStay) {
     // Yellow-green fruit blushed red (parts 1..40, each part's colour the mix of its blush, most
     // of them little blushed: (k / 39)³, k = 0..39) beside reddish-brown bark (the giant, 6000
     // points) and 6 bark pieces spread about its colour (up to 6 ΔE). The 9 most blushed
-    // fruit lie nearer the bark's colour than the fruit's median colour (26-39 ΔE from the
-    // bark's, the fruit's 60), but past a gap from the bark pieces: they stay.
+    // fruit lie nearer the bark's colour than the fruit's median colour does (26-39 ΔE from
+    // the bark's; the median colour about 60), past a gap from the bark pieces: they stay.
     constexpr io::Rgb kYellowGreen{160 / 255.0f, 185 / 255.0f, 70 / 255.0f};
     constexpr io::Rgb kRed{185 / 255.0f, 40 / 255.0f, 45 / 255.0f};
     constexpr io::Rgb kRedBark{120 / 255.0f, 65 / 255.0f, 55 / 255.0f};
