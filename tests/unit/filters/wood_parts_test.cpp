@@ -28,6 +28,14 @@ struct Count {
     }
 };
 
+/// Every point of `c` kept by `r` exactly where its part is one of the fruit, 1..`fruit`.
+void expect_fruit_kept(const WoodPartsResult& r, const Count& c, std::uint32_t fruit) {
+    for (std::size_t i = 0; i < c.labels.size(); ++i) {
+        const bool fruit_point = c.labels[i] >= 1 && c.labels[i] <= fruit;
+        EXPECT_EQ(r.labels[i] != 0, fruit_point) << "point " << i << " of part " << c.labels[i];
+    }
+}
+
 /// 40 tan fruit of 100 points, their colours a little apart (parts 1..40), and noise (label 0).
 Count fruit() {
     Count c;
@@ -65,10 +73,7 @@ TEST(WoodParts, TheWoodAndThePartsColouredLikeItAreDropped) {
     EXPECT_EQ(r.dropped, 6u);
     EXPECT_EQ(r.count, 40u);
     EXPECT_GT(r.fruit_colour_spread, 0);
-    for (std::size_t i = 0; i < c.labels.size(); ++i) {
-        const bool fruit_point = c.labels[i] >= 1 && c.labels[i] <= 40;
-        EXPECT_EQ(r.labels[i] != 0, fruit_point) << "point " << i << " of part " << c.labels[i];
-    }
+    expect_fruit_kept(r, c, 40);
 }
 
 TEST(WoodParts, BarkPiecesOutnumberingTheFruitAreDropped) {
@@ -86,9 +91,7 @@ TEST(WoodParts, BarkPiecesOutnumberingTheFruitAreDropped) {
     EXPECT_EQ(r.giants, 1u);
     EXPECT_EQ(r.dropped, 30u);
     EXPECT_EQ(r.count, 20u);
-    for (std::size_t i = 0; i < c.labels.size(); ++i) {
-        EXPECT_EQ(r.labels[i] != 0, c.labels[i] <= 20) << "point " << i << " of " << c.labels[i];
-    }
+    expect_fruit_kept(r, c, 20);
 }
 
 TEST(WoodParts, WithoutAPartOfTheWoodsSizeNothingIsDropped) {
@@ -179,9 +182,7 @@ TEST(WoodParts, BlushedFruitPastTheBarksSpreadStay) {
     EXPECT_EQ(r.giants, 1u);
     EXPECT_EQ(r.dropped, 6u);
     EXPECT_EQ(r.count, 40u);
-    for (std::size_t i = 0; i < c.labels.size(); ++i) {
-        EXPECT_EQ(r.labels[i] != 0, c.labels[i] <= 40) << "point " << i << " of " << c.labels[i];
-    }
+    expect_fruit_kept(r, c, 40);
     // Every part nearer the bark's colour than the fruit's going (no gap), the reddest go too.
     const WoodPartsResult nearest = wood_parts(c.colours, c.labels, {.gap = 0});
     EXPECT_EQ(nearest.giants, 1u);
