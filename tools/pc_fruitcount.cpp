@@ -57,6 +57,10 @@ int main(int argc, char** argv) {
     });
     pc::tools::bind_color_options(tool, color, "colour: ");
     tool.flag("no-color", &no_color, "skip the colour filter");
+    tool.option("judge-points", &chain.judge_points,
+                "colour: natural colours on a cloud of more points: the colour classes that "
+                "compete are judged on every k-th point (at most this many; faster, but the "
+                "choice may differ), the class kept is counted on all; 0: judged on all");
     tool.option(
         "crop-min", "off",
         [&](const std::string& s) {

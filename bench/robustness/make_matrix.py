@@ -314,6 +314,13 @@ SHAPE_PARTS = [
 # white currants, snowberries; a natural cloud whose fruit look like a mask export's white),
 # each in a quarter of the part's scenes (FEATURED_PARTS); the silver bark stays among the
 # five; colour noise and dense clouds kept.
+# 'held-out-34' (3641-3740, session 47, after held-out-33 was scored, before any method for it)
+# adds jackfruit-like fruit (150 mm, aspect 1.5, single or in pairs, 12 on a tree of 2 m: the
+# largest fruit so far by twice, few on a large tree, as jackfruit, melons on a trellis and
+# pumpkins are) of bloom blue (110,125,160: saturation 0.31, just over the saturation line, hue
+# 222: the dusty blue of blueberries and sloes under their bloom), each in a quarter of the
+# part's scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense
+# clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -388,12 +395,16 @@ WOOD_PARTS = [
      {'mulberry': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 2 --bunch-max 5 '
                           '--touch-gap 0.0005 --fruit-count 160 --canopy 0.6,0.6,0.5')},
      {'ivory': (245, 240, 225)}, set(), WITH_SILVER),
+    ('held-out-34', 2061,
+     {'jackfruit': (0.150, '--species apple --fruit-radius 0.15 --bunch-min 1 --bunch-max 2 '
+                           '--touch-gap 0.005 --fruit-count 12 --canopy 2.0,2.0,1.6')},
+     {'bloom-blue': (110, 125, 160)}, set(), WITH_SILVER),
 ]
 COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33'}
+                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34'}
 DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
-               'held-out-31', 'held-out-32', 'held-out-33'}
-FEATURED_PARTS = {'held-out-32', 'held-out-33'}
+               'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34'}
+FEATURED_PARTS = {'held-out-32', 'held-out-33', 'held-out-34'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -411,6 +422,7 @@ ASPECTS['pod'] = 2.2
 ASPECTS['feijoa'] = 1.4
 ASPECTS['saturn'] = 0.55
 ASPECTS['mulberry'] = 1.6
+ASPECTS['jackfruit'] = 1.5
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)

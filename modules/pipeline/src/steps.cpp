@@ -790,6 +790,22 @@ ChainResult by_shape(io::Blob in,
                      const ChainParams& p,
                      filters::FruitColorChoice c,
                      const Progress& progress) {
+    // A cloud of over p.judge_points: the classes are judged on every `every`-th point, and the
+    // one kept is counted on `all` the points.
+    const std::size_t points_in = in.size();
+    const std::size_t every =
+        p.judge_points > 0 ? (points_in + p.judge_points - 1) / p.judge_points : 1;
+    std::optional<io::Blob> all;
+    if (every > 1) {
+        Indices judged;
+        judged.reserve(points_in / every + 1);
+        for (std::size_t i = 0; i < points_in; i += every) {
+            judged.push_back(static_cast<std::uint32_t>(i));
+        }
+        io::Blob few = io::copy_points(in, judged);
+        all = std::move(in);
+        in = std::move(few);
+    }
     ChainParams rest = p;
     rest.fruit_color.reset();
     // The candidates compete with R as first measured (kBranchAgain): the claims that choose
@@ -812,7 +828,6 @@ ChainResult by_shape(io::Blob in,
     };
     // The chain on the points of `from` (the input, or a copy of a class's points that holds
     // them) that `rule` keeps, its colour step counted against the input.
-    const std::size_t points_in = in.size();
     const auto count_class = [&](const io::Blob& from, const filters::ColorFilterParams& rule) {
         return chain_after(
             colour_step(io::copy_points(from, colour_kept(from, rule)), points_in, rule), rest, {});
@@ -829,13 +844,22 @@ ChainResult by_shape(io::Blob in,
     };
     const auto share = [](double x) { return format_number(std::round(100 * x)) + " %"; };
     // The run kept: where its centres claim few points, split again with R measured without
-    // the points on branches (kBranchAgain); `before` go first among its warnings.
+    // the points on branches (kBranchAgain); `before` go first among its warnings. Judged on
+    // every `every`-th point, the class kept is counted on `all` of them, split again or not as
+    // the judged run says.
     const auto done = [&](ChainResult out, const filters::ColorFilterParams* colour,
-                          const std::string& rule, std::vector<std::string> before = {}) {
-        if (colour != nullptr && p.split->branch_recheck && !p.crop && !p.voxel && !p.knn &&
-            claims(out) < kBranchAgain) {
-            ChainParams again = p;
-            again.fruit_color.reset();
+                          std::string rule, std::vector<std::string> before = {}) {
+        ChainParams again = p;
+        again.fruit_color.reset();
+        const bool branches = colour != nullptr && p.split->branch_recheck && !p.crop && !p.voxel &&
+                              !p.knn && claims(out) < kBranchAgain;
+        if (all) {
+            const ChainParams& q = branches ? again : rest;
+            out = colour != nullptr
+                      ? chain_after(apply_color_filter(std::move(*all), *colour), q, {})
+                      : rest_of_chain({}, std::move(*all), q, {});
+            rule += "; the classes judged on one point in " + std::to_string(every);
+        } else if (branches) {
             const std::size_t n = out.steps.front().points_in;
             out = chain_after(colour_step(std::move(out.labelled), n, *colour), again, {});
         }

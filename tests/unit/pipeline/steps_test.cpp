@@ -4,6 +4,7 @@
 #include <cstring>
 #include <map>
 #include <random>
+#include <regex>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
@@ -463,6 +464,36 @@ TEST(Chain, SmallFruitBesideThickBranchesAreNotMeasuredByTheBranches) {
         sp,
         {.mode = scenes::Mode::kExplicit, .voxel = 0.00233333, .wood_leak = 0.2, .seed = 378083},
         "its fruit centres claim");
+}
+
+/// Natural colours on a cloud of more points than ChainParams::judge_points: the colour classes
+/// are judged on every k-th point, and the class kept is counted on all of them: the same
+/// labelled cloud, byte for byte, as where every point judged, when the same class wins (red
+/// fruit beside brown bark: the rule's group whose centres claim its points).
+TEST(Chain, ClassesJudgedOnEveryKthPointCountTheKeptClassOnAll) {
+    scenes::SceneParams sp = beside_bark({100, 20, 25});
+    sp.trunk_radius = 0.06;
+    const io::Blob in = scenes::to_blob(scenes::render(
+        scenes::make_scene(sp), {.mode = scenes::Mode::kSfm, .voxel = 0.004, .noise = 0.1}));
+    ChainParams all = preset("dense"), few = all;
+    all.judge_points = 0;
+    few.judge_points = (in.size() + 2) / 3;  // every 3rd point
+    const ChainResult a = run_chain(in, all), b = run_chain(in, few);
+    // the same class named; the shares its centres claimed are the judged run's
+    const auto unshared = [](const std::string& rule) {
+        return std::regex_replace(rule, std::regex("[0-9]+ %"), "N %");
+    };
+    EXPECT_NE(a.steps.front().rule.find("the group whose fruit centres claim"), std::string::npos);
+    EXPECT_EQ(unshared(b.steps.front().rule),
+              unshared(a.steps.front().rule) + "; the classes judged on one point in 3");
+    ASSERT_EQ(b.steps.size(), a.steps.size());
+    for (std::size_t k = 0; k < a.steps.size(); ++k) {
+        EXPECT_EQ(b.steps[k].points_in, a.steps[k].points_in) << a.steps[k].name;
+        EXPECT_EQ(b.steps[k].points_out, a.steps[k].points_out) << a.steps[k].name;
+    }
+    EXPECT_EQ(b.steps.front().points_in, in.size());
+    EXPECT_EQ(b.labelled.cloud.data, a.labelled.cloud.data);
+    EXPECT_EQ(b.warnings, a.warnings);
 }
 
 /// Green date-like fruit (125, 175, 60: hue 86; aspect 1.75, in bunches) among leaves beside

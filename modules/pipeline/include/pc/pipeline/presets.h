@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -51,6 +52,12 @@ struct ChainParams {
     /// after the spheres split, on coloured points: the parts coloured like the wood dropped
     std::optional<filters::WoodPartsParams> wood;
     std::uint32_t count_min_points = 1;  ///< clusters with fewer points are not counted
+    /// natural colours under the spheres split, on a cloud of more points than this: the colour
+    /// classes that compete (run_chain()) are judged on every k-th point (k the smallest that
+    /// leaves at most this many), and the class kept is counted on every point; 0 (the default):
+    /// judged on every point. Faster on clouds of millions of points, but a doubtful class's
+    /// claim moves with the thinning (docs/robustness.md, session 47): off unless asked for
+    std::size_t judge_points = 0;
 };
 
 /// The preset names, in the order --help lists them.

@@ -100,8 +100,10 @@ struct ChainResult {
 /// neighbourhood median colour (the output keeps the cloud's colours). The classes compete with the
 /// fruit radius as first measured; the run kept, where its centres claim under half its points, is
 /// split again with the radius measured without the points on branches
-/// (RecursiveSplitParams::branch_recheck). Where no group is offered only the green and the pale
-/// points are set aside (a copy of each), and the rule runs on `in` itself. Where the wood step
+/// (RecursiveSplitParams::branch_recheck). With p.judge_points (off by default), a larger cloud's
+/// classes are judged on every k-th point and the class kept is counted on all. Where no group
+/// is offered only the green and the pale points are set aside (a copy of each), and the rule
+/// runs on `in` itself. Where the wood step
 /// tells the wood apart and drops three quarters of the counted points or more, the split had
 /// measured the fruit radius on the wood: the points it kept are counted again from DBSCAN on
 /// (their steps follow the first count's in `steps`; `labelled` then holds those points only).
