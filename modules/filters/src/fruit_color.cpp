@@ -314,8 +314,12 @@ FruitColorChoice choose_fruit_color(std::span<const io::Rgb> colours, const Frui
                 "auto: mask colours (" + percent(grey, seen) + " grey, two-toned): mean RGB > 0.5";
             return out;
         }
-        out.reason =
-            "auto: grey colours (" + percent(grey, seen) + " grey, not two-toned): no colour rule";
+        const std::string head =
+            "auto: grey colours (" + percent(grey, seen) + " grey, not two-toned)";
+        out.reason = head + ": no colour rule";
+        // The greys may still form two groups (ivory fruit beside silver bark, values 0.96 and
+        // 0.69): offered as classes, for the chain to count where one is claimed as fruit.
+        out.classes = rule_groups(sample, {}, head + ", ", true);
         out.warnings.push_back(
             "the colours are grey and not a two-toned mask, so they cannot tell fruit from the "
             "rest: "

@@ -1065,13 +1065,17 @@ ChainResult by_shape(io::Blob in,
                         share(claimed[best]) + "; " + share(claimed[other]) + " of the other's" +
                         of_rule + ")");
     }
+    const std::string each = " (each group counted alone: fruit centres claimed " +
+                             share(claimed[0]) + " and " + share(claimed[1]) + " of their points" +
+                             of_rule + ")";
+    if (!c.rule) {  // grey colours whose groups are no fruit: every point, as without groups
+        c.reason += each;
+        return chain_after(apply_choice(all ? std::move(*all) : std::move(in), std::move(c)), p,
+                           progress);
+    }
     rest.color = c.rule;
     ChainResult out = by_rule ? std::move(*by_rule) : chain_of(std::move(in), rest);
-    return done(std::move(out), c.rule ? &*c.rule : nullptr,
-                c.reason + " (each group counted alone: fruit centres claimed " +
-                    share(claimed[0]) + " and " + share(claimed[1]) + " of their points" + of_rule +
-                    ")",
-                c.warnings);
+    return done(std::move(out), &*c.rule, c.reason + each, c.warnings);
 }
 
 }  // namespace

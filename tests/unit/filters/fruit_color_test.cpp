@@ -47,6 +47,24 @@ TEST(FruitColor, EvenGreysCarryNoFruitInformation) {
     EXPECT_NE(r.warnings[0].find("cannot tell fruit"), std::string::npos);
 }
 
+TEST(FruitColor, GreysInTwoGroupsAreOfferedForTheShapeTest) {
+    // Ivory fruit (245, 240, 225: saturation 0.08) beside silver bark (175, 170, 160): both grey,
+    // and no two-toned mask (the bark's value 0.69 is a mid grey): no rule, and the warning, but
+    // the two groups (value 0.96 and 0.69) are offered, each keeping one of them.
+    const io::Rgb ivory{245.0f / 255, 240.0f / 255, 225.0f / 255},
+        silver{175.0f / 255, 170.0f / 255, 160.0f / 255};
+    const auto c = repeat({{ivory, 400}, {silver, 600}});
+    const FruitColorChoice r = choose_fruit_color(c, {});
+    EXPECT_FALSE(r.rule);
+    ASSERT_EQ(r.warnings.size(), 1u);
+    EXPECT_NE(r.warnings[0].find("cannot tell fruit"), std::string::npos);
+    ASSERT_EQ(r.classes.size(), 2u) << r.reason;
+    std::array<std::size_t, 2> n{color_filter(c, r.classes[0].rule).kept.size(),
+                                 color_filter(c, r.classes[1].rule).kept.size()};
+    std::sort(n.begin(), n.end());
+    EXPECT_EQ(n, (std::array<std::size_t, 2>{400, 600})) << r.classes[0].reason;
+}
+
 TEST(FruitColor, NaturalColoursKeepSaturatedNonFoliageOfAnyBrightness) {
     // Dark red (hue 0), shaded purple (hue 313), orange; green leaves (hue 109), grey ground.
     const auto c = repeat({{{0.47f, 0.08f, 0.08f}, 100},

@@ -466,6 +466,16 @@ TEST(Chain, SmallFruitBesideThickBranchesAreNotMeasuredByTheBranches) {
         "its fruit centres claim");
 }
 
+/// Ivory fruit (245, 240, 225: saturation 0.08) beside silver bark (175, 170, 160): every colour
+/// is grey and no two-toned mask, so no colour rule tells them apart (held-out-33: fruit and wood
+/// counted together, 101 of 70 in one scene); the greys' two groups of value, each counted alone,
+/// part them as the natural colours' groups do.
+TEST(Chain, IvoryFruitBesideSilverBarkAreAGroupOfTheGreys) {
+    scenes::SceneParams sp = beside_bark({245, 240, 225});
+    sp.wood_rgb = {175, 170, 160};
+    expect_found_by_shape(sp, {.mode = scenes::Mode::kSurface, .voxel = 0.005});
+}
+
 /// Natural colours on a cloud of more points than ChainParams::judge_points: the colour classes
 /// are judged on every k-th point, and the class kept is counted on all of them: the same
 /// labelled cloud, byte for byte, as where every point judged, when the same class wins (red

@@ -43,7 +43,8 @@ struct FruitColorChoice {
     /// among leaves of another green, dark fruit among lighter leaves): the two, for a shape
     /// test to choose between (pipeline::run_chain keeps the one whose points fruit centres
     /// claim, else `rule`). Each with its own two groups where they form them (a class of hue
-    /// round the circle may hold the fruit with bark of another hue).
+    /// round the circle may hold the fruit with bark of another hue). Grey colours that are no
+    /// two-toned mask (no `rule`): their two groups likewise (ivory fruit beside silver bark).
     std::vector<ColourClass> classes;
     /// `rule` is itself a candidate (3 % or more of the saturated points outside foliage hue):
     /// a class is kept instead only where its fruit centres claim more of its points than the
