@@ -728,28 +728,19 @@ ChainResult chain_of(io::Blob in, const ChainParams& p, const Progress& progress
 /// Whether run_chain() ends with the wood step.
 bool wood_step(const ChainParams& p) { return p.split && drops_wood(*p.split, p.wood); }
 
-/// The points of `labelled` in a cluster (label not 0).
-Indices counted_points(const io::Blob& labelled) {
-    Indices out;
-    if (labelled.size() > 0) {
-        const std::vector<std::uint32_t> labels = io::labels(labelled, "label");
-        for (std::uint32_t i = 0; i < labels.size(); ++i) {
-            if (labels[i] != 0) {
-                out.push_back(i);
-            }
-        }
-    }
-    return out;
-}
-
 /// Where the wood step told the wood apart and dropped this share of the counted points or more,
-/// the split had measured the fruit radius mostly on the wood: the points it kept are counted
-/// again from DBSCAN on, at their own spacing and fruit radius. On the 52 scenes of the matrix
+/// the split had measured the fruit radius mostly on the wood: the points beside the wood (those
+/// the wood step kept, and the first count's noise: at the wood's size small fruit are dropped
+/// whole, as parts too small beside the median part; session 47) are counted again from DBSCAN
+/// on, at their own spacing and fruit radius. On the 52 scenes of the matrix
 /// whose wood step told a giant apart (session 43, by hand: the kept points recounted), the 12
 /// that dropped 0.76-0.98 of the points: 10 up, among them small fruit beside a trunk in their
 /// own hues (2453, currants of 2.2 mm beside near-black bark, split with R 9 mm: F1 0 -> 0.64;
 /// 2825, 2911, 3207, 3212), 2 down by 0.005-0.01; 2 that dropped 0.68-0.69 went down (0.77 ->
-/// 0.61, 0.85 -> 0.83).
+/// 0.61, 0.85 -> 0.83). With the noise recounted too, over the 19 scenes of 3640 that recount
+/// (session 47): 12 up by more than 0.01 F1 (3569, mulberries beside bark: 22 -> 127 of 160; 3212
+/// 45 -> 104 of 120; 2453 108 -> 193 of 200), 2 down (2911 58 -> 20 of 80: 69 points more, and
+/// its bunch recheck no longer took the smaller radius; 2825 93 -> 84 of 150).
 constexpr double kMostlyWood = 0.75;
 
 }  // namespace
@@ -759,12 +750,23 @@ ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progres
     if (!wood_step(p)) {
         return out;
     }
-    const std::size_t counted = counted_points(out.labelled).size();
+    const std::vector<std::uint32_t> labels =
+        out.labelled.size() > 0 ? io::labels(out.labelled, "label") : std::vector<std::uint32_t>{};
+    const auto counted = static_cast<std::size_t>(
+        std::count_if(labels.begin(), labels.end(), [](std::uint32_t l) { return l != 0; }));
     out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
-    const StepRecord& wood = out.steps.back();  // its points_out: the points it kept counted
-    if (step_value(out, "wood_parts", "giants").value_or(0) > 0 && wood.points_out > 0 &&
-        static_cast<double>(wood.points_out) <= (1 - kMostlyWood) * static_cast<double>(counted)) {
-        const Indices kept = counted_points(out.labelled);
+    const std::size_t by_wood = out.steps.back().points_out;  // the counted points it kept
+    if (step_value(out, "wood_parts", "giants").value_or(0) > 0 && by_wood > 0 &&
+        static_cast<double>(by_wood) <= (1 - kMostlyWood) * static_cast<double>(counted)) {
+        // Every point but the wood's: the first count's noise too (at the wood's size it drops
+        // small fruit whole as parts too small beside the median part).
+        const std::vector<std::uint32_t> after = io::labels(out.labelled, "label");
+        Indices kept;
+        for (std::uint32_t i = 0; i < after.size(); ++i) {
+            if (after[i] != 0 || labels[i] == 0) {
+                kept.push_back(i);
+            }
+        }
         const double first = step_value(out, "recursive_split", "fruit_radius").value_or(0);
         ChainParams again = p;  // the points kept passed the steps before DBSCAN already
         again.crop.reset();
@@ -774,10 +776,11 @@ ChainResult run_chain(io::Blob in, const ChainParams& p, const Progress& progres
         out = rest_of_chain(std::move(out), std::move(recount), again, progress);
         out.labelled = take(out, apply_wood_parts(std::move(out.labelled), *p.wood), progress);
         out.warnings.push_back(
-            "the wood step dropped " + std::to_string(counted - kept.size()) + " of " +
+            "the wood step dropped " + std::to_string(counted - by_wood) + " of " +
             std::to_string(counted) + " counted points: the fruit radius " + format_rounded(first) +
             " was measured mostly on the wood, and the " + std::to_string(kept.size()) +
-            " points kept were counted again (fruit radius " +
+            " points beside the wood (those it kept and the count's noise) were counted again "
+            "(fruit radius " +
             format_rounded(step_value(out, "recursive_split", "fruit_radius").value_or(0)) +
             "); the warnings before this one are of the first count");
     }

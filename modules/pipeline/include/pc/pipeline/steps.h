@@ -105,8 +105,9 @@ struct ChainResult {
 /// is offered only the green and the pale points are set aside (a copy of each), and the rule
 /// runs on `in` itself. Where the wood step
 /// tells the wood apart and drops three quarters of the counted points or more, the split had
-/// measured the fruit radius on the wood: the points it kept are counted again from DBSCAN on
-/// (their steps follow the first count's in `steps`; `labelled` then holds those points only).
+/// measured the fruit radius on the wood: the points beside the wood (those it kept and the first
+/// count's noise) are counted again from DBSCAN on (their steps follow the first count's in
+/// `steps`; `labelled` then holds those points only).
 [[nodiscard]] ChainResult run_chain(io::Blob in,
                                     const ChainParams& p,
                                     const std::function<void(const std::string&)>& progress = {});
