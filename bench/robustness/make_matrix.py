@@ -321,6 +321,12 @@ SHAPE_PARTS = [
 # 222: the dusty blue of blueberries and sloes under their bloom), each in a quarter of the
 # part's scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense
 # clouds kept.
+# 'held-out-35' (3741-3840, session 47, after held-out-34 was scored, before any method for it)
+# adds banana-like fruit (18 mm, aspect 2.8: the longest so far, in hands of 6-12 touching, 120 on
+# a tree of 0.8 m) of pale pink (250,215,220: saturation 0.14, under the saturation line, of a
+# red hue: pink-blushed pears, pitaya flesh, pale lychees), each in a quarter of the part's
+# scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense clouds
+# kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -399,12 +405,17 @@ WOOD_PARTS = [
      {'jackfruit': (0.150, '--species apple --fruit-radius 0.15 --bunch-min 1 --bunch-max 2 '
                            '--touch-gap 0.005 --fruit-count 12 --canopy 2.0,2.0,1.6')},
      {'bloom-blue': (110, 125, 160)}, set(), WITH_SILVER),
+    ('held-out-35', 2062,
+     {'banana': (0.018, '--species apple --fruit-radius 0.018 --bunch-min 6 --bunch-max 12 '
+                        '--touch-gap 0.0005 --fruit-count 120 --canopy 0.8,0.8,0.65')},
+     {'pale-pink': (250, 215, 220)}, set(), WITH_SILVER),
 ]
 COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34'}
+                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34',
+                      'held-out-35'}
 DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
-               'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34'}
-FEATURED_PARTS = {'held-out-32', 'held-out-33', 'held-out-34'}
+               'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34', 'held-out-35'}
+FEATURED_PARTS = {'held-out-32', 'held-out-33', 'held-out-34', 'held-out-35'}
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -423,6 +434,7 @@ ASPECTS['feijoa'] = 1.4
 ASPECTS['saturn'] = 0.55
 ASPECTS['mulberry'] = 1.6
 ASPECTS['jackfruit'] = 1.5
+ASPECTS['banana'] = 2.8
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
