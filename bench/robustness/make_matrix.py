@@ -410,12 +410,18 @@ WOOD_PARTS = [
                         '--touch-gap 0.0005 --fruit-count 120 --canopy 0.8,0.8,0.65')},
      {'pale-pink': (250, 215, 220)}, set(), WITH_SILVER),
 ]
-COLOUR_NOISE_PARTS = {'held-out-25', 'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29',
-                      'held-out-30', 'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34',
-                      'held-out-35'}
-DENSE_PARTS = {'held-out-26', 'held-out-27', 'held-out-28', 'held-out-29', 'held-out-30',
-               'held-out-31', 'held-out-32', 'held-out-33', 'held-out-34', 'held-out-35'}
-FEATURED_PARTS = {'held-out-32', 'held-out-33', 'held-out-34', 'held-out-35'}
+
+
+def from_part(first_part):
+    """The parts of WOOD_PARTS from `first_part` on: each later part keeps the conditions
+    brought in before it."""
+    names = [w[0] for w in WOOD_PARTS]
+    return set(names[names.index(first_part):])
+
+
+COLOUR_NOISE_PARTS = from_part('held-out-25')
+DENSE_PARTS = from_part('held-out-26')
+FEATURED_PARTS = from_part('held-out-32')
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
