@@ -327,6 +327,12 @@ SHAPE_PARTS = [
 # red hue: pink-blushed pears, pitaya flesh, pale lychees), each in a quarter of the part's
 # scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense clouds
 # kept.
+# 'held-out-36' (3841-3940, session 48, after held-out-35 was scored, before any method for it)
+# adds coconut-like fruit (100 mm, aspect 1.2, in bunches of 4-10 touching, 40 on a tree of
+# 2 m: large fruit crowded, where every bunch so far was of small fruit) of mint (215,230,200:
+# saturation 0.13, under the saturation line, of a green hue inside the leaves' band: young
+# coconuts, honeydew melons, pale gooseberries), each in a quarter of the part's scenes
+# (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -409,6 +415,10 @@ WOOD_PARTS = [
      {'banana': (0.018, '--species apple --fruit-radius 0.018 --bunch-min 6 --bunch-max 12 '
                         '--touch-gap 0.0005 --fruit-count 120 --canopy 0.8,0.8,0.65')},
      {'pale-pink': (250, 215, 220)}, set(), WITH_SILVER),
+    ('held-out-36', 2063,
+     {'coconut': (0.100, '--species apple --fruit-radius 0.1 --bunch-min 4 --bunch-max 10 '
+                         '--touch-gap 0.004 --fruit-count 40 --canopy 2.0,2.0,1.6')},
+     {'mint': (215, 230, 200)}, set(), WITH_SILVER),
 ]
 
 
@@ -441,6 +451,7 @@ ASPECTS['saturn'] = 0.55
 ASPECTS['mulberry'] = 1.6
 ASPECTS['jackfruit'] = 1.5
 ASPECTS['banana'] = 2.8
+ASPECTS['coconut'] = 1.2
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
