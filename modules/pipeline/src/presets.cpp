@@ -28,7 +28,7 @@ const std::vector<std::string>& preset_names() {
 }
 
 void parse_eps(const std::string& text, segmentation::DbscanParams& dbscan, EpsRule& rule) {
-    if (text == "auto") {  // the robust choice: 4 x the point spacing (docs/robustness.md)
+    if (text == "auto") {  // the robust choice: 4 x the point spacing (docs/robustness-history.md)
         rule.mode = EpsRule::Mode::kSpacing;
         rule.factor = 4.0;
     } else if (text == "knee") {
@@ -85,19 +85,18 @@ ChainParams preset(std::string_view name) {
         // Beyond the paper (docs/dense-bunches.md): no length given, every one from the cloud.
         // eps = 4 x the point spacing (0.016 on a 4 mm voxel grid, the paper's 0.015 in kind);
         // fruit are the centres the surfaces' normals vote for (solid fruit: their outer
-        // layer), every point goes to its nearest centre (docs/robustness.md); clusters below a
-        // tenth of the median cluster are not fruit.
-        // The colour rule from the cloud: the paper's mean RGB > 0.5 drops red, purple and
-        // shaded fruit (docs/robustness.md).
+        // layer), every point goes to its nearest centre (docs/robustness-history.md); clusters
+        // below a tenth of the median cluster are not fruit. The colour rule from the cloud: the
+        // paper's mean RGB > 0.5 drops red, purple and shaded fruit (docs/robustness-history.md).
         p.color.reset();
         p.fruit_color = filters::FruitColorParams{};
         // Where the colours are noisy (SfM, NeRF), the rule reads each point's neighbourhood
-        // colour: the median of its own and its 8 nearest neighbours' (docs/robustness.md).
+        // colour: the median of its own and its 8 nearest neighbours' (docs/robustness-history.md).
         p.color_smooth = filters::kAutoColorSmooth;
         // No kNN outlier filter: it drops a tenth of every cloud, the sparse parts first (the far
         // side of SfM fruit, fruit sampled thinly, fruit of 2 spacings), while DBSCAN's
         // min_points and the split's leftover rules already drop isolated points
-        // (docs/robustness.md: 940 scenes 0.956 -> 0.968, off by > 20 % 47 -> 25).
+        // (docs/robustness-history.md: 940 scenes 0.956 -> 0.968, off by > 20 % 47 -> 25).
         p.knn.reset();
         p.eps = EpsRule{.mode = EpsRule::Mode::kSpacing, .factor = 4.0};
         p.split = segmentation::RecursiveSplitParams{.rule = segmentation::SplitRule::kSpheres,
@@ -105,7 +104,7 @@ ChainParams preset(std::string_view name) {
                                                      .min_relative_size = 0.1};
         // The tree's wood, where it shows as one part far too large for a fruit and its colour
         // differs from the fruit's, goes with the parts coloured like it (bark pieces whose
-        // points' noisy colours passed the colour rule: docs/robustness.md).
+        // points' noisy colours passed the colour rule: docs/robustness-history.md).
         p.wood = filters::WoodPartsParams{};
         return p;
     }

@@ -338,8 +338,8 @@ Step apply_dbscan(io::Blob in, segmentation::DbscanParams p, const EpsRule& eps)
 /// (ρ = 1 / s³) holds 4.19 (R/s)³.
 constexpr double kSolidBallPoints = 0.69;
 /// Solid fruit whose median cluster holds under this share of that are not balls of radius R.
-/// Measured over the 540 scored scenes of the condition matrix (docs/robustness.md): solid ones
-/// counted right hold 0.32 (random in the volume, the least) to 4.1 (R/s)³ (lattices), the
+/// Measured over the 540 scored scenes of the condition matrix (docs/robustness-history.md): solid
+/// ones counted right hold 0.32 (random in the volume, the least) to 4.1 (R/s)³ (lattices), the
 /// random-volume bunches at 2 spacings a radius counted as one fruit each 0.04-0.16.
 constexpr double kTooFewForABall = 0.25 / kSolidBallPoints;
 /// Fruit centres that took under this share of the clustered points leave most of the count to
@@ -601,7 +601,7 @@ constexpr const char* kTooLarge =
 /// split again with R measured without the points on branches (segmentation::SphereVoteParams::
 /// branch_below): the candidates compete with R as first measured, as the claims above were
 /// judged (with the recheck in every candidate, a rule that kept the wood claimed more and hid
-/// a group of the fruit alone: 148 -> 326 of 150, docs/robustness.md, session 35).
+/// a group of the fruit alone: 148 -> 326 of 150, docs/robustness-history.md, session 35).
 constexpr double kBranchAgain = 0.5;
 
 /// A colour candidate's points are no fruit where their fruit radius is over this share of the

@@ -22,7 +22,7 @@ struct ColorSmoothParams {
 /// Colour noise from which smooth_colors() smooths under `auto`: 10 of 255 a channel. Read on
 /// clean colours: 4.4-13.3 of 255 on the matrix's pc_synth scenes (±8 levels and ±8 % brightness
 /// a point) and 7.4 on a real SfM apple tree (2.66M points); with N(0, 12) added, 14.8; with
-/// N(0, 25), 27-28 (docs/robustness.md).
+/// N(0, 25), 27-28 (docs/robustness-history.md).
 inline constexpr double kNoisyColours = 10.0 / 255;
 /// The `auto` smoothing: K = 8 where the noise reaches kNoisyColours (the dense preset's).
 inline constexpr ColorSmoothParams kAutoColorSmooth{.k = 8, .min_noise = kNoisyColours};

@@ -56,7 +56,7 @@ struct ChainParams {
     /// classes that compete (run_chain()) are judged on every k-th point (k the smallest that
     /// leaves at most this many), and the class kept is counted on every point; 0 (the default):
     /// judged on every point. Faster on clouds of millions of points, but a doubtful class's
-    /// claim moves with the thinning (docs/robustness.md, session 47): off unless asked for
+    /// claim moves with the thinning (docs/robustness-history.md, session 47): off unless asked for
     std::size_t judge_points = 0;
 };
 

@@ -94,8 +94,8 @@ struct ChainResult {
 /// under the saturation line, beside bark or leaves). Each is counted alone where the
 /// rule's fruit centres claim too few of its points (two groups of greens: also where few points
 /// lie outside foliage hue), and the run of the class whose centres claim its points is kept
-/// (docs/robustness.md gives the shares); a group of the rule kept gives way to the greens where
-/// their centres claim clearly more (a group of bark pieces claimed as fruit are). Where
+/// (docs/robustness-history.md gives the shares); a group of the rule kept gives way to the greens
+/// where their centres claim clearly more (a group of bark pieces claimed as fruit are). Where
 /// p.color_smooth finds the colours noisy, every colour decision reads each point's
 /// neighbourhood median colour (the output keeps the cloud's colours). The classes compete with the
 /// fruit radius as first measured; the run kept, where its centres claim under half its points, is

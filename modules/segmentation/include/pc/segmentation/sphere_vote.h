@@ -71,8 +71,8 @@ struct SphereVoteParams {
     /// centres) are one fruit; where R spans join_resolution spacings (0 near: never), and
     /// coarser only where the joins would leave at least coarse_joins × the count's parts fewer
     /// (touching round fruit sampled so coarsely also read as one body now and then, but seldom
-    /// as many: docs/robustness.md, session 34). Centres join_near to join_far × R apart (pods
-    /// and chili split in two lie up to 2.7 R apart) are joined only where the points at the
+    /// as many: docs/robustness-history.md, session 34). Centres join_near to join_far × R apart
+    /// (pods and chili split in two lie up to 2.7 R apart) are joined only where the points at the
     /// join (±0.25 R) also ring the line between them: across it, their smaller second moment at
     /// least join_ring × the larger (the pods of scene 3312 read 0.89-0.99; dates side by side
     /// in 3081, whose points meet in a band, from 0.07)
