@@ -2,6 +2,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <unordered_map>
 #include <unordered_set>
@@ -575,6 +576,48 @@ public:
         return kept;
     }
 
+    /// The votes along the segment from `a` to `b` against those at its ends: the weakest of the
+    /// slabs (about `radius` long) between the balls of `radius` around either end, each the
+    /// weight of the votes within `radius` of the line per unit volume, over the weaker end
+    /// ball's per unit volume. A long fruit's votes lie along its axis (a prolate spheroid's
+    /// normals meet the axis all along its middle) and fill every slab; two fruit side by side
+    /// or in a row leave the stretch between their centres nearly empty.
+    [[nodiscard]] double line(const V3& a, const V3& b, double radius) const {
+        const V3 axis = b - a;
+        const double d = axis.norm();
+        const double inner = d - 2 * radius;
+        if (!(inner > 0)) {
+            return 0;
+        }
+        const V3 u = axis / d;
+        const auto slabs = static_cast<std::size_t>(std::max(1.0, std::round(inner / radius)));
+        const double length = inner / static_cast<double>(slabs);
+        std::vector<double> w(slabs, 0.0);
+        // the cells within reach of the line, each once
+        const int reach = static_cast<int>(std::ceil(radius / cell_)) + 1;
+        std::vector<std::uint64_t> cells;
+        for (double t = radius; t <= d - radius + 0.5 * cell_; t += cell_) {
+            const V3 at = a + t * u;
+            for_cells(key_of(coord(at.x(), 0), coord(at.y(), 1), coord(at.z(), 2)), reach,
+                      [&](std::size_t c) { cells.push_back(keys_[c]); });
+        }
+        std::sort(cells.begin(), cells.end());
+        cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+        for (const std::uint64_t k : cells) {
+            const std::uint32_t c = index_.at(k);
+            for (std::uint32_t v = begin_[c]; v < begin_[c + 1]; ++v) {
+                const V3 q = entries_[v].at.cast<double>() - a;
+                const double t = q.dot(u) - radius;
+                if (t >= 0 && t < inner && (q - q.dot(u) * u).squaredNorm() <= radius * radius) {
+                    w[std::min(slabs - 1, static_cast<std::size_t>(t / length))] += entries_[v].w;
+                }
+            }
+        }
+        const double ends = std::min(gather(a, radius), gather(b, radius)) / (4.0 / 3 * radius);
+        const double weakest = *std::min_element(w.begin(), w.end()) / length;
+        return ends > 0 ? weakest / ends : 0;  // (the common factor pi radius^2 cancels)
+    }
+
 private:
     struct Entry {
         std::uint64_t key;
@@ -803,6 +846,12 @@ void assign(const XyzView& points,
     }
 }
 
+/// Centres closer than this × R are not joined by their votes' line (Votes::line): at 2-3
+/// spacings a radius the vote balls of two fruit spread into the stretch between them (of the
+/// pairs of different fruit traced in 84 matrix scenes whose line read 0.3 or more, 125 of 144
+/// were under 2 R apart; docs/robustness-history.md, session 49).
+constexpr double kLineNear = 2;
+
 /// Elongated fruit (pears, lemons, dates: spheroids of aspect up to about 1.8) give two peaks on
 /// their long axis, where the normals of either end meet, or one peak and a leftover end beyond
 /// reach. Two parts, each a fruit around a centre or a leftover piece of a cluster (around its
@@ -820,10 +869,15 @@ void assign(const XyzView& points,
 /// across the line is at least `join_ring` × the larger (a pod's cross-section is round, 1; two
 /// fruit side by side meet in a band, or one's cap cut across its length: about 1/aspect²). Labels
 /// are merged in place (into the fruit's); returns the fruit centres merged into another.
+/// Long fruit (bananas, aspect near 3) are cut into three or four parts along their axis, whose
+/// middles are beyond reach of the centres at either end, so their points say little: two centres
+/// kLineNear to join_line_far × R apart are also one fruit where the `votes` between them fill the
+/// line (Votes::line at least join_line).
 std::uint32_t join_elongated(const XyzView& points,
                              const std::vector<std::uint32_t>& members,
                              std::vector<std::uint32_t>& labels,
                              const std::vector<Peak>& peaks,
+                             const Votes& votes,
                              double R,
                              const SphereVoteParams& params) {
     const auto count = static_cast<std::uint32_t>(peaks.size());
@@ -903,8 +957,15 @@ std::uint32_t join_elongated(const XyzView& points,
             const double d = (centre[k] - centre[j]).norm();
             const double window = k < count ? std::max(params.join_near, params.join_far) : 2.5;
             const bool ring = k < count && d >= params.join_near * R;
-            if (of[j].empty() || of[k].empty() || !(d > 0 && d < window * R) ||
-                find(j) == find(k) || (k >= count && find(k) != k) || !one_body(j, k, ring)) {
+            if (of[j].empty() || of[k].empty() || !(d > 0) || find(j) == find(k) ||
+                (k >= count && find(k) != k)) {
+                continue;
+            }
+            const bool line = k < count && params.join_line > 0 && d >= kLineNear * R &&
+                              d < params.join_line_far * R;
+            if (!(d < window * R && one_body(j, k, ring)) &&
+                !(line &&
+                  votes.line(centre[j], centre[k], params.peak_radius * R) >= params.join_line)) {
                 continue;
             }
             merged += k < count ? 1 : 0;
@@ -1057,11 +1118,14 @@ void SphereVoteParams::validate() const {
     }
     if (!(join_near >= 0 && std::isfinite(join_near)) ||
         !(join_far >= 0 && std::isfinite(join_far)) || !(join_ring >= 0 && join_ring <= 1) ||
+        !(join_line >= 0 && std::isfinite(join_line)) ||
+        !(join_line_far >= 0 && std::isfinite(join_line_far)) ||
         !(join_convex > 0 && join_convex <= 2) ||
         !(join_resolution >= 0 && std::isfinite(join_resolution)) ||
         !(coarse_joins >= 0 && std::isfinite(coarse_joins))) {
         throw InvalidArgument(
-            "sphere_vote: join_near, join_far, join_resolution and coarse_joins must be >= 0, "
+            "sphere_vote: join_near, join_far, join_line, join_line_far, join_resolution and "
+            "coarse_joins must be >= 0, "
             "join_ring in [0, 1], join_convex in (0, 2]");
     }
     if (!(min_resolution >= 0 && std::isfinite(min_resolution))) {
@@ -1240,41 +1304,47 @@ SphereVoteResult sphere_vote(const XyzView& points,
     }
 
     // Each point votes for the centres at p ± R n; the peaks are the fruit.
-    const auto vote = [&](double radius) {
-        const Normals nm = normals(surface, params.normal_scale * radius, s);
-        Votes votes(params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
-                    2 * static_cast<std::size_t>(std::count_if(
-                            nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
-        for (std::uint32_t i = 0; i < s.view.size; ++i) {
-            if (nm.w[i] > kVotes) {
-                const V3 p = vec(s.view[i]);
-                votes.add(p + radius * nm.n[i], nm.w[i], i);
-                votes.add(p - radius * nm.n[i], nm.w[i], i);
-            }
-        }
-        votes.finish();
-        return votes.peaks(params, s, radius, nm);
-    };
-    // The peaks at a radius, and the members given to them, starting again from the clusters
-    // every time (a solid's refit and the second look below try other radii).
     struct Fit {
         std::vector<Peak> peaks;
         std::vector<std::uint32_t> labels;
+        std::shared_ptr<const Votes> votes;
     };
+    const auto vote = [&](double radius, Fit& f) {
+        const Normals nm = normals(surface, params.normal_scale * radius, s);
+        auto votes = std::make_shared<Votes>(
+            params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
+            2 * static_cast<std::size_t>(
+                    std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
+        for (std::uint32_t i = 0; i < s.view.size; ++i) {
+            if (nm.w[i] > kVotes) {
+                const V3 p = vec(s.view[i]);
+                votes->add(p + radius * nm.n[i], nm.w[i], i);
+                votes->add(p - radius * nm.n[i], nm.w[i], i);
+            }
+        }
+        votes->finish();
+        f.peaks = votes->peaks(params, s, radius, nm);
+        f.votes = std::move(votes);
+    };
+    // The peaks at a radius, and the members given to them, starting again from the clusters
+    // every time (a solid's refit and the second look below try other radii).
     // Moved, not copied: until the first fit is taken they are `labels` (a third copy of the
     // labels of 1M points while voting was 3 MB of pc_fruitcount's peak).
     const std::vector<std::uint32_t> clusters = std::move(labels);
     current = &clusters;
     const auto attempt = [&](double radius) {
-        Fit f{vote(radius), clusters};
+        Fit f{{}, clusters, nullptr};
+        vote(radius, f);
         if (!f.peaks.empty()) {
             assign(points, members, f.labels, f.peaks, params, radius);
         }
         return f;
     };
     std::vector<Peak> peaks;
+    std::shared_ptr<const Votes> votes;
     const auto take = [&](Fit&& f, double radius) {
         peaks = std::move(f.peaks);
+        votes = std::move(f.votes);
         labels = std::move(f.labels);
         current = &labels;
         R = radius;
@@ -1377,10 +1447,11 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // coarser where the joins are many (coarse_joins).
     std::uint32_t joined = 0;
     if (params.join_near > 0 && R >= params.join_resolution * ss) {
-        joined = join_elongated(points, members, labels, peaks, R, params);
+        joined = join_elongated(points, members, labels, peaks, *votes, R, params);
     } else if (params.join_near > 0) {
         std::vector<std::uint32_t> trial = labels, counted = labels;
-        const std::uint32_t joins = join_elongated(points, members, trial, peaks, R, params);
+        const std::uint32_t joins =
+            join_elongated(points, members, trial, peaks, *votes, R, params);
         const double fewer = parts(labels, members) - parts(trial, members);
         const std::uint32_t count =
             finish(counted, params.min_cluster_size, params.min_relative_size,
