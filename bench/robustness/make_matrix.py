@@ -333,6 +333,13 @@ SHAPE_PARTS = [
 # saturation 0.13, under the saturation line, of a green hue inside the leaves' band: young
 # coconuts, honeydew melons, pale gooseberries), each in a quarter of the part's scenes
 # (FEATURED_PARTS); the silver bark stays among the five; colour noise and dense clouds kept.
+# 'held-out-37' (3941-4040, session 49, after held-out-36 was scored, before any method for it)
+# adds eggplant-like fruit (40 mm, aspect 2.5, single or in pairs, 30 on a plant of 1.2 m: long
+# fruit hanging alone, where the only long ones so far were crowded in hands) of black (40,30,35:
+# value 0.16, saturation 0.25, under the saturation line: blackberries, black olives,
+# blackcurrants, the darkest fruit so far, darker than the near-black bark), each in a quarter
+# of the part's scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and
+# dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -419,6 +426,10 @@ WOOD_PARTS = [
      {'coconut': (0.100, '--species apple --fruit-radius 0.1 --bunch-min 4 --bunch-max 10 '
                          '--touch-gap 0.004 --fruit-count 40 --canopy 2.0,2.0,1.6')},
      {'mint': (215, 230, 200)}, set(), WITH_SILVER),
+    ('held-out-37', 2064,
+     {'eggplant': (0.040, '--species apple --fruit-radius 0.04 --bunch-min 1 --bunch-max 2 '
+                          '--touch-gap 0.003 --fruit-count 30 --canopy 1.2,1.2,1.0')},
+     {'black': (40, 30, 35)}, set(), WITH_SILVER),
 ]
 
 
@@ -452,6 +463,7 @@ ASPECTS['mulberry'] = 1.6
 ASPECTS['jackfruit'] = 1.5
 ASPECTS['banana'] = 2.8
 ASPECTS['coconut'] = 1.2
+ASPECTS['eggplant'] = 2.5
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
