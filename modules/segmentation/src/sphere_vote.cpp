@@ -576,46 +576,52 @@ public:
         return kept;
     }
 
-    /// The votes along the segment from `a` to `b` against those at its ends: the weakest of the
-    /// slabs (about `radius` long) between the balls of `radius` around either end, each the
-    /// weight of the votes within `radius` of the line per unit volume, over the weaker end
-    /// ball's per unit volume. A long fruit's votes lie along its axis (a prolate spheroid's
-    /// normals meet the axis all along its middle) and fill every slab; two fruit side by side
-    /// or in a row leave the stretch between their centres nearly empty.
-    [[nodiscard]] double line(const V3& a, const V3& b, double radius) const {
+    /// Whether the votes fill the segment from `a` to `b`: each of the slabs (about `radius`
+    /// long) between the balls of `radius` around either end holds, within `radius` of the line,
+    /// votes of at least `need` × the weaker end ball's weight per unit volume. A long fruit's
+    /// votes lie along its axis (a prolate spheroid's normals meet the axis all along its middle)
+    /// and fill every slab; two fruit side by side or in a row leave the stretch between their
+    /// centres nearly empty. The slabs are read from the middle out, and the first too light
+    /// ends the reading (the middle one, for most pairs of round fruit).
+    [[nodiscard]] bool line(const V3& a, const V3& b, double radius, double need) const {
         const V3 axis = b - a;
         const double d = axis.norm();
         const double inner = d - 2 * radius;
-        if (!(inner > 0)) {
-            return 0;
+        const double ends = std::min(gather(a, radius), gather(b, radius)) / (4.0 / 3 * radius);
+        if (!(inner > 0) || !(ends > 0)) {
+            return false;
         }
         const V3 u = axis / d;
         const auto slabs = static_cast<std::size_t>(std::max(1.0, std::round(inner / radius)));
         const double length = inner / static_cast<double>(slabs);
-        std::vector<double> w(slabs, 0.0);
-        // the cells within reach of the line, each once
-        const int reach = static_cast<int>(std::ceil(radius / cell_)) + 1;
-        std::vector<std::uint64_t> cells;
-        for (double t = radius; t <= d - radius + 0.5 * cell_; t += cell_) {
-            const V3 at = a + t * u;
-            for_cells(key_of(coord(at.x(), 0), coord(at.y(), 1), coord(at.z(), 2)), reach,
-                      [&](std::size_t c) { cells.push_back(keys_[c]); });
-        }
-        std::sort(cells.begin(), cells.end());
-        cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-        for (const std::uint64_t k : cells) {
-            const std::uint32_t c = index_.at(k);
-            for (std::uint32_t v = begin_[c]; v < begin_[c + 1]; ++v) {
-                const V3 q = entries_[v].at.cast<double>() - a;
-                const double t = q.dot(u) - radius;
-                if (t >= 0 && t < inner && (q - q.dot(u) * u).squaredNorm() <= radius * radius) {
-                    w[std::min(slabs - 1, static_cast<std::size_t>(t / length))] += entries_[v].w;
-                }
+        const double around = std::sqrt(0.25 * length * length + radius * radius);
+        // the middle slab first, then outwards
+        std::vector<std::size_t> order(slabs);
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        const auto off_middle = [&](std::size_t k) {
+            return std::abs(2 * static_cast<double>(k) - static_cast<double>(slabs - 1));
+        };
+        std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
+            return off_middle(x) < off_middle(y);
+        });
+        for (const std::size_t k : order) {
+            double w = 0;
+            for_votes_within(
+                a + (radius + (static_cast<double>(k) + 0.5) * length) * u, around,
+                [&](const Entry& e) {
+                    const V3 q = e.at.cast<double>() - a;
+                    const double t = q.dot(u) - radius;
+                    if (t >= 0 && t < inner &&
+                        std::min(slabs - 1, static_cast<std::size_t>(t / length)) == k &&
+                        (q - q.dot(u) * u).squaredNorm() <= radius * radius) {
+                        w += e.w;
+                    }
+                });
+            if (!(w / length >= need * ends)) {  // (the common factor pi radius^2 cancels)
+                return false;
             }
         }
-        const double ends = std::min(gather(a, radius), gather(b, radius)) / (4.0 / 3 * radius);
-        const double weakest = *std::min_element(w.begin(), w.end()) / length;
-        return ends > 0 ? weakest / ends : 0;  // (the common factor pi radius^2 cancels)
+        return true;
     }
 
 private:
@@ -965,7 +971,7 @@ std::uint32_t join_elongated(const XyzView& points,
                               d < params.join_line_far * R;
             if (!(d < window * R && one_body(j, k, ring)) &&
                 !(line &&
-                  votes.line(centre[j], centre[k], params.peak_radius * R) >= params.join_line)) {
+                  votes.line(centre[j], centre[k], params.peak_radius * R, params.join_line))) {
                 continue;
             }
             merged += k < count ? 1 : 0;
