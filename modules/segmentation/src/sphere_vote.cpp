@@ -858,6 +858,50 @@ void assign(const XyzView& points,
 /// were under 2 R apart; docs/robustness-history.md, session 49).
 constexpr double kLineNear = 2;
 
+/// The pairs of `peaks` (j < k, sorted) kLineNear to join_line_far × R apart whose `votes` fill
+/// the line between them (Votes::line at least join_line).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> line_pairs(const std::vector<Peak>& peaks,
+                                                                const Votes& votes,
+                                                                double R,
+                                                                const SphereVoteParams& params) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> lines;
+    if (peaks.empty()) {
+        return lines;
+    }
+    const double far = params.join_line_far * R;
+    const V3 origin = peaks.front().centre;
+    const auto cell_of = [&](const V3& p, int a) { return cell_index((p(a) - origin(a)) / far); };
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near;
+    for (std::uint32_t j = 0; j < peaks.size(); ++j) {
+        const V3& c = peaks[j].centre;
+        near[key_of(cell_of(c, 0), cell_of(c, 1), cell_of(c, 2))].push_back(j);
+    }
+    for (std::uint32_t j = 0; j < peaks.size(); ++j) {
+        const V3& c = peaks[j].centre;
+        for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = near.find(
+                        key_of(cell_of(c, 0) + dx, cell_of(c, 1) + dy, cell_of(c, 2) + dz));
+                    if (it == near.end()) {
+                        continue;
+                    }
+                    for (const std::uint32_t k : it->second) {
+                        const double d = (peaks[k].centre - c).norm();
+                        if (k > j && d >= kLineNear * R && d < far &&
+                            votes.line(c, peaks[k].centre, params.peak_radius * R,
+                                       params.join_line)) {
+                            lines.emplace_back(j, k);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    std::sort(lines.begin(), lines.end());
+    return lines;
+}
+
 /// Elongated fruit (pears, lemons, dates: spheroids of aspect up to about 1.8) give two peaks on
 /// their long axis, where the normals of either end meet, or one peak and a leftover end beyond
 /// reach. Two parts, each a fruit around a centre or a leftover piece of a cluster (around its
@@ -877,13 +921,13 @@ constexpr double kLineNear = 2;
 /// are merged in place (into the fruit's); returns the fruit centres merged into another.
 /// Long fruit (bananas, aspect near 3) are cut into three or four parts along their axis, whose
 /// middles are beyond reach of the centres at either end, so their points say little: two centres
-/// kLineNear to join_line_far × R apart are also one fruit where the `votes` between them fill the
-/// line (Votes::line at least join_line).
+/// kLineNear to join_line_far × R apart are also one fruit where the votes between them fill the
+/// line: the pairs `lines` (j < k, sorted; line_pairs()).
 std::uint32_t join_elongated(const XyzView& points,
                              const std::vector<std::uint32_t>& members,
                              std::vector<std::uint32_t>& labels,
                              const std::vector<Peak>& peaks,
-                             const Votes& votes,
+                             const std::vector<std::pair<std::uint32_t, std::uint32_t>>& lines,
                              double R,
                              const SphereVoteParams& params) {
     const auto count = static_cast<std::uint32_t>(peaks.size());
@@ -967,11 +1011,8 @@ std::uint32_t join_elongated(const XyzView& points,
                 (k >= count && find(k) != k)) {
                 continue;
             }
-            const bool line = k < count && params.join_line > 0 && d >= kLineNear * R &&
-                              d < params.join_line_far * R;
             if (!(d < window * R && one_body(j, k, ring)) &&
-                !(line &&
-                  votes.line(centre[j], centre[k], params.peak_radius * R, params.join_line))) {
+                !std::binary_search(lines.begin(), lines.end(), std::make_pair(j, k))) {
                 continue;
             }
             merged += k < count ? 1 : 0;
@@ -1310,14 +1351,9 @@ SphereVoteResult sphere_vote(const XyzView& points,
     }
 
     // Each point votes for the centres at p ± R n; the peaks are the fruit.
-    struct Fit {
-        std::vector<Peak> peaks;
-        std::vector<std::uint32_t> labels;
-        std::shared_ptr<const Votes> votes;
-    };
-    const auto vote = [&](double radius, Fit& f) {
+    const auto vote = [&](double radius, std::vector<Peak>* peaks) {
         const Normals nm = normals(surface, params.normal_scale * radius, s);
-        auto votes = std::make_shared<Votes>(
+        auto votes = std::make_unique<Votes>(
             params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
             2 * static_cast<std::size_t>(
                     std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
@@ -1329,28 +1365,33 @@ SphereVoteResult sphere_vote(const XyzView& points,
             }
         }
         votes->finish();
-        f.peaks = votes->peaks(params, s, radius, nm);
-        f.votes = std::move(votes);
+        if (peaks != nullptr) {
+            *peaks = votes->peaks(params, s, radius, nm);
+        }
+        return votes;
     };
     // The peaks at a radius, and the members given to them, starting again from the clusters
     // every time (a solid's refit and the second look below try other radii).
+    struct Fit {
+        std::vector<Peak> peaks;
+        std::vector<std::uint32_t> labels;
+    };
     // Moved, not copied: until the first fit is taken they are `labels` (a third copy of the
     // labels of 1M points while voting was 3 MB of pc_fruitcount's peak).
-    const std::vector<std::uint32_t> clusters = std::move(labels);
+    std::vector<std::uint32_t> clusters = std::move(labels);
     current = &clusters;
     const auto attempt = [&](double radius) {
-        Fit f{{}, clusters, nullptr};
-        vote(radius, f);
+        std::vector<Peak> found;
+        (void)vote(radius, &found);  // before the labels' copy: the votes' peak memory without it
+        Fit f{std::move(found), clusters};
         if (!f.peaks.empty()) {
             assign(points, members, f.labels, f.peaks, params, radius);
         }
         return f;
     };
     std::vector<Peak> peaks;
-    std::shared_ptr<const Votes> votes;
     const auto take = [&](Fit&& f, double radius) {
         peaks = std::move(f.peaks);
-        votes = std::move(f.votes);
         labels = std::move(f.labels);
         current = &labels;
         R = radius;
@@ -1450,22 +1491,31 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
     }
     // Elongated fruit split in two are joined where the cloud resolves a fruit's profile, and
-    // coarser where the joins are many (coarse_joins).
+    // coarser where the joins are many (coarse_joins). The fit's votes are cast again for the
+    // line test and freed before the join (kept from the fit, two fits' votes at once raised the
+    // peak memory on 1M points by 3 MB); the clusters are no longer needed.
+    std::vector<std::uint32_t>().swap(clusters);
     std::uint32_t joined = 0;
-    if (params.join_near > 0 && R >= params.join_resolution * ss) {
-        joined = join_elongated(points, members, labels, peaks, *votes, R, params);
-    } else if (params.join_near > 0) {
-        std::vector<std::uint32_t> trial = labels, counted = labels;
-        const std::uint32_t joins =
-            join_elongated(points, members, trial, peaks, *votes, R, params);
-        const double fewer = parts(labels, members) - parts(trial, members);
-        const std::uint32_t count =
-            finish(counted, params.min_cluster_size, params.min_relative_size,
-                   static_cast<std::uint32_t>(peaks.size()))
-                .count;
-        if (fewer > 0 && fewer >= params.coarse_joins * count) {
-            labels = std::move(trial);
-            joined = joins;
+    if (params.join_near > 0) {
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> lines;
+        if (params.join_line > 0) {  // the votes cast again, read, and freed before the join
+            lines = line_pairs(peaks, *vote(R, nullptr), R, params);
+        }
+        if (R >= params.join_resolution * ss) {
+            joined = join_elongated(points, members, labels, peaks, lines, R, params);
+        } else {
+            std::vector<std::uint32_t> trial = labels, counted = labels;
+            const std::uint32_t joins =
+                join_elongated(points, members, trial, peaks, lines, R, params);
+            const double fewer = parts(labels, members) - parts(trial, members);
+            const std::uint32_t count =
+                finish(counted, params.min_cluster_size, params.min_relative_size,
+                       static_cast<std::uint32_t>(peaks.size()))
+                    .count;
+            if (fewer > 0 && fewer >= params.coarse_joins * count) {
+                labels = std::move(trial);
+                joined = joins;
+            }
         }
     }
     r.peaks = static_cast<std::uint32_t>(peaks.size()) - joined;

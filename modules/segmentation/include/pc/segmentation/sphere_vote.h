@@ -88,9 +88,11 @@ struct SphereVoteParams {
     /// two centres' vote balls holds, within peak_radius × R of the line, at least join_line ×
     /// the density of votes in the weaker ball (0: never). Traced over 84 matrix scenes, of the
     /// pairs 2-4 R apart that the profile did not join: 1428 of 2499 pairs of one fruit's
-    /// centres read 0.3 or more, 19 of 31256 of different fruit (docs/robustness-history.md,
-    /// session 49)
-    double join_line = 0.3;
+    /// centres read 0.3 or more, 19 of 31256 of different fruit; at 0.3 the 28 banana scenes
+    /// 0.462 -> 0.511 and the rest of the matrix ±0, but off by default: the votes cast again
+    /// for it cost 10-15 % of the time on the 4M-point bench canopy (kept from the fit instead,
+    /// 12 % of the peak memory) (docs/robustness-history.md, session 49)
+    double join_line = 0;
     double join_line_far = 4;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     /// ... and those with fewer than this × the median final size: the median fruit's where
@@ -145,7 +147,8 @@ struct SphereVoteResult {
 ///  5. Elongated fruit: two parts close together whose points form one convex body (no waist
 ///     between them, as two touching fruit have) are one fruit (join_near, join_convex; further
 ///     apart also ringing the line between them: join_far, join_ring), and two centres whose
-///     votes fill the line between them (long fruit: join_line, join_line_far), where R spans
+///     votes fill the line between them (long fruit: join_line, join_line_far; off by
+///     default), where R spans
 ///     join_resolution spacings, and coarser where such pairs are many (coarse_joins).
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
