@@ -2,7 +2,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <memory>
 #include <numeric>
 #include <unordered_map>
 #include <unordered_set>
@@ -791,6 +790,44 @@ Sample without_sheets(const XyzView& points,
     return sheets.empty() || rest.size() < 10 ? Sample{} : thinned(points, rest, labels, 1);
 }
 
+/// The peaks' centres hashed into cubes `cell` wide (from the first centre): for_each_near()
+/// visits the peaks in the 27 cubes around a point, every peak within `cell` of it among them.
+class CentreGrid {
+public:
+    CentreGrid(const std::vector<Peak>& peaks, double cell)
+        : cell_(cell), origin_(peaks.front().centre) {
+        for (std::uint32_t j = 0; j < peaks.size(); ++j) {
+            cells_[key(peaks[j].centre, 0, 0, 0)].push_back(j);
+        }
+    }
+
+    template <typename F>
+    void for_each_near(const V3& p, F&& f) const {
+        for (int dx = -1; dx <= 1; ++dx) {
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells_.find(key(p, dx, dy, dz));
+                    if (it != cells_.end()) {
+                        for (const std::uint32_t j : it->second) {
+                            f(j);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+private:
+    std::uint64_t key(const V3& p, int dx, int dy, int dz) const {
+        const auto at = [&](int a) { return cell_index((p(a) - origin_(a)) / cell_); };
+        return key_of(at(0) + dx, at(1) + dy, at(2) + dz);
+    }
+
+    double cell_;
+    V3 origin_;
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
 /// Every clustered point to the peak nearest relative to its radius, within `reach` (label
 /// 1 + the peak); the rest keep their cluster (label 1 + peaks + the cluster's), unless that rest
 /// is a sheet (leaves, ground: no fruit; label 0). In place.
@@ -801,14 +838,7 @@ void assign(const XyzView& points,
             const SphereVoteParams& params,
             double R) {
     const double reach = params.reach;
-    const double cell = reach * 1.4 * R;
-    const V3 origin = peaks.front().centre;
-    const auto cell_of = [&](const V3& p, int a) { return cell_index((p(a) - origin(a)) / cell); };
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near;
-    for (std::uint32_t j = 0; j < peaks.size(); ++j) {
-        const V3& c = peaks[j].centre;
-        near[key_of(cell_of(c, 0), cell_of(c, 1), cell_of(c, 2))].push_back(j);
-    }
+    const CentreGrid near(peaks, reach * 1.4 * R);
     const auto count = static_cast<std::uint32_t>(peaks.size());
     std::vector<std::uint32_t>& out = labels;  // each point reads its own label, then writes it
 #pragma omp parallel for schedule(static)
@@ -817,24 +847,13 @@ void assign(const XyzView& points,
         const V3 p = vec(points[i]);
         double best = reach;
         std::uint32_t to = count + labels[i];
-        const std::int64_t cx = cell_of(p, 0), cy = cell_of(p, 1), cz = cell_of(p, 2);
-        for (int dx = -1; dx <= 1; ++dx) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = near.find(key_of(cx + dx, cy + dy, cz + dz));
-                    if (it == near.end()) {
-                        continue;
-                    }
-                    for (auto j : it->second) {
-                        const double d = (p - peaks[j].centre).norm() / peaks[j].radius;
-                        if (d < best || (d == best && j + 1 < to)) {
-                            best = d;
-                            to = j + 1;
-                        }
-                    }
-                }
+        near.for_each_near(p, [&](std::uint32_t j) {
+            const double d = (p - peaks[j].centre).norm() / peaks[j].radius;
+            if (d < best || (d == best && j + 1 < to)) {
+                best = d;
+                to = j + 1;
             }
-        }
+        });
         out[i] = to;
     }
     std::map<std::uint32_t, std::vector<std::uint32_t>> rest;
@@ -869,34 +888,16 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> line_pairs(const std::vecto
         return lines;
     }
     const double far = params.join_line_far * R;
-    const V3 origin = peaks.front().centre;
-    const auto cell_of = [&](const V3& p, int a) { return cell_index((p(a) - origin(a)) / far); };
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> near;
+    const CentreGrid near(peaks, far);
     for (std::uint32_t j = 0; j < peaks.size(); ++j) {
         const V3& c = peaks[j].centre;
-        near[key_of(cell_of(c, 0), cell_of(c, 1), cell_of(c, 2))].push_back(j);
-    }
-    for (std::uint32_t j = 0; j < peaks.size(); ++j) {
-        const V3& c = peaks[j].centre;
-        for (int dx = -1; dx <= 1; ++dx) {
-            for (int dy = -1; dy <= 1; ++dy) {
-                for (int dz = -1; dz <= 1; ++dz) {
-                    const auto it = near.find(
-                        key_of(cell_of(c, 0) + dx, cell_of(c, 1) + dy, cell_of(c, 2) + dz));
-                    if (it == near.end()) {
-                        continue;
-                    }
-                    for (const std::uint32_t k : it->second) {
-                        const double d = (peaks[k].centre - c).norm();
-                        if (k > j && d >= kLineNear * R && d < far &&
-                            votes.line(c, peaks[k].centre, params.peak_radius * R,
-                                       params.join_line)) {
-                            lines.emplace_back(j, k);
-                        }
-                    }
-                }
+        near.for_each_near(c, [&](std::uint32_t k) {
+            const double d = (peaks[k].centre - c).norm();
+            if (k > j && d >= kLineNear * R && d < far &&
+                votes.line(c, peaks[k].centre, params.peak_radius * R, params.join_line)) {
+                lines.emplace_back(j, k);
             }
-        }
+        });
     }
     std::sort(lines.begin(), lines.end());
     return lines;
@@ -1353,20 +1354,19 @@ SphereVoteResult sphere_vote(const XyzView& points,
     // Each point votes for the centres at p ± R n; the peaks are the fruit.
     const auto vote = [&](double radius, std::vector<Peak>* peaks) {
         const Normals nm = normals(surface, params.normal_scale * radius, s);
-        auto votes = std::make_unique<Votes>(
-            params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
-            2 * static_cast<std::size_t>(
-                    std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
+        Votes votes(params.cell * radius, vec(s.view[0]) - V3::Constant(4 * radius),
+                    2 * static_cast<std::size_t>(std::count_if(
+                            nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; })));
         for (std::uint32_t i = 0; i < s.view.size; ++i) {
             if (nm.w[i] > kVotes) {
                 const V3 p = vec(s.view[i]);
-                votes->add(p + radius * nm.n[i], nm.w[i], i);
-                votes->add(p - radius * nm.n[i], nm.w[i], i);
+                votes.add(p + radius * nm.n[i], nm.w[i], i);
+                votes.add(p - radius * nm.n[i], nm.w[i], i);
             }
         }
-        votes->finish();
+        votes.finish();
         if (peaks != nullptr) {
-            *peaks = votes->peaks(params, s, radius, nm);
+            *peaks = votes.peaks(params, s, radius, nm);
         }
         return votes;
     };
@@ -1378,7 +1378,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
     };
     // Moved, not copied: until the first fit is taken they are `labels` (a third copy of the
     // labels of 1M points while voting was 3 MB of pc_fruitcount's peak).
-    std::vector<std::uint32_t> clusters = std::move(labels);
+    const std::vector<std::uint32_t> clusters = std::move(labels);
     current = &clusters;
     const auto attempt = [&](double radius) {
         std::vector<Peak> found;
@@ -1492,14 +1492,12 @@ SphereVoteResult sphere_vote(const XyzView& points,
     }
     // Elongated fruit split in two are joined where the cloud resolves a fruit's profile, and
     // coarser where the joins are many (coarse_joins). The fit's votes are cast again for the
-    // line test and freed before the join (kept from the fit, two fits' votes at once raised the
-    // peak memory on 1M points by 3 MB); the clusters are no longer needed.
-    std::vector<std::uint32_t>().swap(clusters);
+    // line test and freed before the join (kept from the fit, they raised the peak memory).
     std::uint32_t joined = 0;
     if (params.join_near > 0) {
         std::vector<std::pair<std::uint32_t, std::uint32_t>> lines;
         if (params.join_line > 0) {  // the votes cast again, read, and freed before the join
-            lines = line_pairs(peaks, *vote(R, nullptr), R, params);
+            lines = line_pairs(peaks, vote(R, nullptr), R, params);
         }
         if (R >= params.join_resolution * ss) {
             joined = join_elongated(points, members, labels, peaks, lines, R, params);
