@@ -43,6 +43,9 @@ void WoodPartsParams::validate() const {
     if (!((gap == 0 || gap >= 1) && std::isfinite(gap))) {
         throw InvalidArgument("wood_parts: gap must be 0 or >= 1");
     }
+    if (!(stray_share >= 0 && stray_share <= 1)) {
+        throw InvalidArgument("wood_parts: stray_share must be in [0, 1]");
+    }
 }
 
 std::array<double, 3> cielab(const io::Rgb& c) {
@@ -108,14 +111,6 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
             (points[l] > giant ? giants : others).push_back(l);
         }
     }
-    if (giants.empty() || others.empty()) {
-        r.count = renumber_by_size(labels);
-        r.labels = std::move(labels);
-        return r;
-    }
-    // Each giant's colour against the other parts': the fruit's colour is the median colour
-    // (per channel, each part one vote) of the parts nearer it than the giant's, found from
-    // those further from the giant than the median part is (two means, one held at the giant's).
     const auto median_colour = [&](const std::vector<std::uint32_t>& of) {
         Lab out{};
         for (int k = 0; k < 3; ++k) {
@@ -128,6 +123,51 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
         return out;
     };
     std::vector<bool> drop(std::size_t{top} + 1, false);
+    const auto finish = [&] {
+        for (const std::uint32_t l : others) {
+            r.dropped += drop[l] ? 1 : 0;
+        }
+        for (std::uint32_t& l : labels) {
+            l = drop[l] ? 0 : l;
+        }
+        r.count = renumber_by_size(labels);
+        r.labels = std::move(labels);
+        return r;
+    };
+    if (others.empty()) {
+        return finish();
+    }
+    if (giants.empty()) {
+        // No giant: wood given fruit centres along its branches is all in pieces. The parts'
+        // median colour (each part one vote) is the fruit's where the fruit are most parts; the
+        // parts more than `apart` × the parts' spread from it (and min_apart) go where they hold
+        // under `stray_share` of the parts' points and their median part is smaller than the
+        // others' (pieces: a second colour of fruit, or green fruit outnumbered by the leaves
+        // kept beside them, has parts of a fruit's size).
+        const Lab colour = median_colour(others);
+        std::vector<double> off;
+        for (const std::uint32_t l : others) {
+            off.push_back(distance(mean[l], colour));
+        }
+        std::vector<double> reordered = off;
+        const double limit = std::max(params.apart * median(reordered), params.min_apart);
+        double held = 0;
+        std::vector<double> stray_sizes, kept_sizes;
+        for (std::size_t j = 0; j < others.size(); ++j) {
+            held += off[j] > limit ? points[others[j]] : 0;
+            (off[j] > limit ? stray_sizes : kept_sizes).push_back(points[others[j]]);
+        }
+        if (params.stray_share > 0 && !stray_sizes.empty() && !kept_sizes.empty() &&
+            held < params.stray_share * counted && median(stray_sizes) < median(kept_sizes)) {
+            for (std::size_t j = 0; j < others.size(); ++j) {
+                drop[others[j]] = off[j] > limit;
+            }
+        }
+        return finish();
+    }
+    // Each giant's colour against the other parts': the fruit's colour is the median colour
+    // (per channel, each part one vote) of the parts nearer it than the giant's, found from
+    // those further from the giant than the median part is (two means, one held at the giant's).
     for (const std::uint32_t g : giants) {
         std::vector<double> to_giant;  // of each of `others`
         for (const std::uint32_t l : others) {
@@ -186,15 +226,7 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
             drop[others[nearer[k]]] = true;
         }
     }
-    for (const std::uint32_t l : others) {
-        r.dropped += drop[l] ? 1 : 0;
-    }
-    for (std::uint32_t& l : labels) {
-        l = drop[l] ? 0 : l;
-    }
-    r.count = renumber_by_size(labels);
-    r.labels = std::move(labels);
-    return r;
+    return finish();
 }
 
 }  // namespace pc::filters

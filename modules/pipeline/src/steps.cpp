@@ -513,7 +513,10 @@ Step apply_wood_parts(io::Blob in, const filters::WoodPartsParams& p) {
         "wood_parts: " +
             (r.giants > 0 ? std::to_string(r.giants) + " part(s) of the wood's size and " +
                                 std::to_string(r.dropped) + " coloured like them dropped"
-                          : std::string("no part of the wood's size coloured apart")) +
+             : r.dropped > 0
+                 ? std::to_string(r.dropped) +
+                       " small part(s) coloured apart from most dropped (pieces of wood)"
+                 : std::string("no part of the wood's size coloured apart")) +
             ", " + std::to_string(r.count) + " clusters",
         {"wood_parts",
          n,

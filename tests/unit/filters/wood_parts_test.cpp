@@ -96,6 +96,7 @@ TEST(WoodParts, BarkPiecesOutnumberingTheFruitAreDropped) {
 
 TEST(WoodParts, WithoutAPartOfTheWoodsSizeNothingIsDropped) {
     // The same bark pieces, but the trunk holds 4999 points: under 50 times the median part
+    // (and the bark, coloured apart, holds most points: no pieces)
     Count c = fruit();
     c.add(41, 4999, kBark);
     for (std::uint32_t l = 42; l < 48; ++l) {
@@ -110,18 +111,59 @@ TEST(WoodParts, WithoutAPartOfTheWoodsSizeNothingIsDropped) {
 
 TEST(WoodParts, AGiantHoldingFewOfThePointsIsNoWood) {
     // 400 parts of 100 points beside one of 5001 (over 50 times the median part, but 11 % of
-    // the points: a merged mass of leaves, not a tree's wood) coloured like the bark pieces
+    // the points: a merged mass of leaves, not a tree's wood), 100 of them coloured as it is
     Count c;
     for (std::uint32_t l = 1; l <= 400; ++l) {
         c.add(l, 100, l <= 300 ? kTan : kBark);
     }
     c.add(401, 5001, kBark);
-    const WoodPartsResult r = wood_parts(c.colours, c.labels);
+    const WoodPartsResult r = wood_parts(c.colours, c.labels, {.stray_share = 0});
     EXPECT_EQ(r.giants, 0u);
     EXPECT_EQ(r.dropped, 0u);
     EXPECT_EQ(r.count, 401u);
     // ... unless the share asked for is lower
-    EXPECT_EQ(wood_parts(c.colours, c.labels, {.share = 0.1}).count, 300u);
+    EXPECT_EQ(wood_parts(c.colours, c.labels, {.share = 0.1, .stray_share = 0}).count, 300u);
+}
+
+TEST(WoodParts, WithoutAGiantSmallPartsColouredApartFromMostAreDropped) {
+    // Thin wood cut into pieces by fruit centres: 40 tan fruit of 100 points, 12 bark pieces of
+    // 40 (no part of the wood's size). The bark pieces lie far more than 4 times the parts'
+    // spread from their median colour, hold 11 % of the points and are smaller: they go.
+    Count c = fruit();
+    for (std::uint32_t l = 41; l <= 52; ++l) {
+        c.add(l, 40, kBark, 0.005f * static_cast<float>(l % 3));
+    }
+    const WoodPartsResult r = wood_parts(c.colours, c.labels);
+    EXPECT_EQ(r.giants, 0u);
+    EXPECT_EQ(r.dropped, 12u);
+    EXPECT_EQ(r.count, 40u);
+    expect_fruit_kept(r, c, 40);
+    // Off (stray_share 0), every part stays.
+    EXPECT_EQ(wood_parts(c.colours, c.labels, {.stray_share = 0}).count, 52u);
+}
+
+TEST(WoodParts, WithoutAGiantPartsColouredApartStayWhereTheyAreNoSmallerOrHoldMost) {
+    // Fruit of a second colour (as large as the others: ripe and unripe fruit, or green fruit
+    // outnumbered by the leaves kept beside them) stay ...
+    Count c = fruit();
+    for (std::uint32_t l = 41; l <= 52; ++l) {
+        c.add(l, 100, kBark);
+    }
+    EXPECT_EQ(wood_parts(c.colours, c.labels).count, 52u);
+    // ... and so do small parts coloured apart that hold half the points or more.
+    Count d;
+    for (std::uint32_t l = 1; l <= 30; ++l) {
+        d.add(l, 100, kTan);
+    }
+    for (std::uint32_t l = 31; l <= 40; ++l) {
+        d.add(l, 99, kBark);
+    }
+    for (std::uint32_t l = 41; l <= 45; ++l) {
+        d.add(l, 500, kBark);
+    }
+    const WoodPartsResult r = wood_parts(d.colours, d.labels);
+    EXPECT_EQ(r.dropped, 0u);
+    EXPECT_EQ(r.count, 45u);
 }
 
 TEST(WoodParts, AGiantColouredAsTheFruitAreIsKept) {
@@ -211,6 +253,8 @@ TEST(WoodParts, RefusesMismatchedSizesAndBadParameters) {
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.apart = NAN}), InvalidArgument);
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.gap = 0.5}), InvalidArgument);
     EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.gap = INFINITY}), InvalidArgument);
+    EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.stray_share = -0.1}), InvalidArgument);
+    EXPECT_THROW((void)wood_parts(d.colours, d.labels, {.stray_share = NAN}), InvalidArgument);
 }
 
 }  // namespace

@@ -38,6 +38,12 @@ struct WoodPartsParams {
     /// apart no part lay past such a gap (2052: 5.0 then 11.8 ΔE, 2.4 times; at 2 times, 11
     /// scenes kept one to five bark pieces more). 0: every part nearer goes
     double gap = 3;
+    /// Where no part is a giant: the parts coloured more than `apart` × the parts' spread (their
+    /// median distance from the parts' median colour; and min_apart) from that median colour go
+    /// where they hold under this share of the parts' points and their median part is smaller
+    /// than the others' (bark pieces, half a fruit's points or fewer in the matrix scenes
+    /// traced: docs/robustness-history.md, session 50). 0: never
+    double stray_share = 0.5;
     void validate() const;
 };
 
@@ -63,9 +69,11 @@ struct WoodPartsResult {
 /// `min_apart`) from the fruit's, the giant is the wood and goes, with the parts nearer its
 /// colour than the fruit's (bark pieces) up to a gap in their distances from its colour (`gap`:
 /// fruit the median colour left on the wood's side, such as the reddest of blushed fruit beside
-/// reddish bark, lie past it). Parts are left alone where no giant is told apart (no
-/// giant; a giant coloured as the parts are: mask colours, brown fruit beside brown bark, a
-/// merged bunch). Throws pc::InvalidArgument when the sizes differ.
+/// reddish bark, lie past it). Where no part is a giant, the wood may be all in pieces: the
+/// parts far from the parts' median colour go where they are smaller parts and a minority of the
+/// points (`stray_share`). Parts are left alone where a giant is not told apart (coloured as the
+/// parts are: mask colours, brown fruit beside brown bark, a merged bunch). Throws
+/// pc::InvalidArgument when the sizes differ.
 [[nodiscard]] WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
                                          std::vector<std::uint32_t> labels,
                                          const WoodPartsParams& params = {});
