@@ -151,12 +151,11 @@ WoodPartsResult wood_parts(std::span<const io::Rgb> colours,
         }
         std::vector<double> reordered = off;
         const double limit = std::max(params.apart * median(reordered), params.min_apart);
-        double held = 0;
         std::vector<double> stray_sizes, kept_sizes;
         for (std::size_t j = 0; j < others.size(); ++j) {
-            held += off[j] > limit ? points[others[j]] : 0;
             (off[j] > limit ? stray_sizes : kept_sizes).push_back(points[others[j]]);
         }
+        const double held = std::accumulate(stray_sizes.begin(), stray_sizes.end(), 0.0);
         if (params.stray_share > 0 && !stray_sizes.empty() && !kept_sizes.empty() &&
             held < params.stray_share * counted && median(stray_sizes) < median(kept_sizes)) {
             for (std::size_t j = 0; j < others.size(); ++j) {
