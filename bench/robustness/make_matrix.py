@@ -47,7 +47,7 @@ DENSE_SPACING = 0.0008                           # ... down to a spacing of 0.8 
 
 
 def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False,
-         barks=BARK, featured=None):
+         barks=BARK, featured=None, leafy=False):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
@@ -60,7 +60,9 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
     spacing is set by the cameras, not by the fruit); drawn from the scene's own seed, so the
     other draws keep their order.
     featured: (families, colours) new in this part, each drawn for a quarter of its scenes (drawn
-    uniformly, a new family of 40 came up in 2 of 100 scenes, a new colour in none)."""
+    uniformly, a new family of 40 came up in 2 of 100 scenes, a new colour in none).
+    leafy: a quarter of the scenes export 40 % of the leaves, not 10 % (a loosely masked or
+    whole-canopy export: leaf points outnumber the fruit's); drawn from the scene's own seed."""
     for i in ids:
         if featured and rng.random() < 0.25:
             family = rng.choice(sorted(featured[0]))
@@ -110,6 +112,8 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
             sigma = rng.choice(COLOR_NOISE)
             if sigma and colour != 'mask':
                 args += f' --color-noise {sigma}'
+        if leafy and random.Random(seed * 2 + 1).random() < 0.25:
+            args += ' --leaf-leak 0.4'
         yield f'{i:03d}|{part(family, colour, mode)}|{family}|{mode}|{rs}|{noise}|{colour}|{units}|{args}'
 
 
@@ -340,6 +344,14 @@ SHAPE_PARTS = [
 # blackcurrants, the darkest fruit so far, darker than the near-black bark), each in a quarter
 # of the part's scenes (FEATURED_PARTS); the silver bark stays among the five; colour noise and
 # dense clouds kept.
+# 'held-out-38' (4041-4140, session 51, after held-out-37 was scored, before any method for it)
+# adds strawberry-like fruit (12 mm, aspect 1.25, single or in threes, 120 on a low bed of
+# 1.6 x 0.6 x 0.3 m: fruit in a flat layer near the ground, as strawberries, tomatoes on the
+# ground and melons lie) of jade (80,150,110: hue 146, on the blue side of the leaves' green
+# (hue 109), where every green fruit so far sat on the yellow side, and teal beyond it at 171),
+# each in a quarter of the part's scenes (FEATURED_PARTS); and leafy exports (a quarter of the
+# scenes export 40 % of the leaves, not 10 %: LEAFY_PARTS); the silver bark stays among the
+# five; colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -430,6 +442,10 @@ WOOD_PARTS = [
      {'eggplant': (0.040, '--species apple --fruit-radius 0.04 --bunch-min 1 --bunch-max 2 '
                           '--touch-gap 0.003 --fruit-count 30 --canopy 1.2,1.2,1.0')},
      {'black': (40, 30, 35)}, set(), WITH_SILVER),
+    ('held-out-38', 2065,
+     {'strawberry': (0.012, '--species apple --fruit-radius 0.012 --bunch-min 1 --bunch-max 3 '
+                            '--touch-gap 0.002 --fruit-count 120 --canopy 0.8,0.3,0.15')},
+     {'jade': (80, 150, 110)}, set(), WITH_SILVER),
 ]
 
 
@@ -443,6 +459,7 @@ def from_part(first_part):
 COLOUR_NOISE_PARTS = from_part('held-out-25')
 DENSE_PARTS = from_part('held-out-26')
 FEATURED_PARTS = from_part('held-out-32')
+LEAFY_PARTS = from_part('held-out-38')
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -464,6 +481,7 @@ ASPECTS['jackfruit'] = 1.5
 ASPECTS['banana'] = 2.8
 ASPECTS['coconut'] = 1.2
 ASPECTS['eggplant'] = 2.5
+ASPECTS['strawberry'] = 1.25
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
@@ -475,7 +493,8 @@ for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOO
                   wood=part in {w[0] for w in WOOD_PARTS},
                   color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS,
                   barks=barks[0] if barks else BARK,
-                  featured=(new_families, new_colours) if part in FEATURED_PARTS else None)
+                  featured=(new_families, new_colours) if part in FEATURED_PARTS else None,
+                  leafy=part in LEAFY_PARTS)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
