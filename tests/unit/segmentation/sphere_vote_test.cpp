@@ -380,9 +380,8 @@ TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot
     }
     add_shells(s, row, id, id);
     const std::uint32_t fruit = id + 3;  // 12 + 2 + 4
-    // (the end crumbs that DBSCAN clusters leave dropped, as the chain's presets do; the line
-    // join is off by default)
-    SphereVoteParams params{.join_line = 0.3, .min_relative_size = 0.1};
+    // (the end crumbs that DBSCAN clusters leave dropped, as the chain's presets do)
+    SphereVoteParams params{.min_relative_size = 0.1};
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, params);
     EXPECT_EQ(r.cluster_count, fruit);
     const long wrong = misassigned(r.labels, s.truth);

@@ -89,10 +89,11 @@ struct SphereVoteParams {
     /// the density of votes in the weaker ball (0: never). Traced over 84 matrix scenes, of the
     /// pairs 2-4 R apart that the profile did not join: 1428 of 2499 pairs of one fruit's
     /// centres read 0.3 or more, 19 of 31256 of different fruit; at 0.3 the 28 banana scenes
-    /// 0.462 -> 0.511 and the rest of the matrix ±0, but off by default: the votes cast again
-    /// for it cost 10-15 % of the time on the 4M-point bench canopy (kept from the fit instead,
-    /// 12 % of the peak memory) (docs/robustness-history.md, session 49)
-    double join_line = 0;
+    /// 0.462 -> 0.511, the 35 eggplant-like 0.725 -> 0.771, the rest of the matrix ±0. Its votes
+    /// are cast again from the fit's voters (their normals kept: 2-3 % of the time and +1 % of
+    /// the peak memory on the bench canopies, where fitting the normals again cost 10-15 %)
+    /// (docs/robustness-history.md, sessions 49 and 51)
+    double join_line = 0.3;
     double join_line_far = 4;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     /// ... and those with fewer than this × the median final size: the median fruit's where
@@ -147,8 +148,7 @@ struct SphereVoteResult {
 ///  5. Elongated fruit: two parts close together whose points form one convex body (no waist
 ///     between them, as two touching fruit have) are one fruit (join_near, join_convex; further
 ///     apart also ringing the line between them: join_far, join_ring), and two centres whose
-///     votes fill the line between them (long fruit: join_line, join_line_far; off by
-///     default), where R spans
+///     votes fill the line between them (long fruit: join_line, join_line_far), where R spans
 ///     join_resolution spacings, and coarser where such pairs are many (coarse_joins).
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
