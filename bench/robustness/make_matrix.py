@@ -352,6 +352,12 @@ SHAPE_PARTS = [
 # each in a quarter of the part's scenes (FEATURED_PARTS); and leafy exports (a quarter of the
 # scenes export 40 % of the leaves, not 10 %: LEAFY_PARTS); the silver bark stays among the
 # five; colour noise and dense clouds kept.
+# 'held-out-39' (4141-4240, session 51, after held-out-38 was scored, before any method for it)
+# adds lime-like fruit (25 mm, aspect 1.1, single or in pairs, 100 anywhere in a canopy of 1.6 m,
+# not only in its outer half (--shell 0): fruit deep among the leaves and branches, as citrus
+# hang) of indigo (70,55,140: hue 251, between the dark blue (236) and the violet (283) fruit
+# so far, saturated: damsons, indigo berries), each in a quarter of the part's scenes; leafy
+# exports, silver bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -446,6 +452,10 @@ WOOD_PARTS = [
      {'strawberry': (0.012, '--species apple --fruit-radius 0.012 --bunch-min 1 --bunch-max 3 '
                             '--touch-gap 0.002 --fruit-count 120 --canopy 0.8,0.3,0.15')},
      {'jade': (80, 150, 110)}, set(), WITH_SILVER),
+    ('held-out-39', 2066,
+     {'lime': (0.025, '--species apple --fruit-radius 0.025 --bunch-min 1 --bunch-max 2 '
+                      '--touch-gap 0.002 --fruit-count 100 --canopy 0.8,0.8,0.65 --shell 0')},
+     {'indigo': (70, 55, 140)}, set(), WITH_SILVER),
 ]
 
 
@@ -482,6 +492,7 @@ ASPECTS['banana'] = 2.8
 ASPECTS['coconut'] = 1.2
 ASPECTS['eggplant'] = 2.5
 ASPECTS['strawberry'] = 1.25
+ASPECTS['lime'] = 1.1
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
