@@ -1375,26 +1375,26 @@ SphereVoteResult sphere_vote(const XyzView& points,
     const auto vote = [&](double radius, Voters* keep) {
         const Normals nm = normals(surface, params.normal_scale * radius, s);
         const V3 origin = vec(s.view[0]) - V3::Constant(4 * radius);
-        const auto voters = static_cast<std::size_t>(
-            std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w > kVotes; }));
-        std::vector<Peak> found = cast(radius, origin, voters, [&](const auto& f) {
-                                      for (std::uint32_t i = 0; i < s.view.size; ++i) {
-                                          if (nm.w[i] > kVotes) {
-                                              f(vec(s.view[i]), nm.n[i], nm.w[i], i);
-                                          }
+        std::vector<std::uint32_t> voters;  // in the sample
+        for (std::uint32_t i = 0; i < s.view.size; ++i) {
+            if (nm.w[i] > kVotes) {
+                voters.push_back(i);
+            }
+        }
+        std::vector<Peak> found = cast(radius, origin, voters.size(), [&](const auto& f) {
+                                      for (const std::uint32_t i : voters) {
+                                          f(vec(s.view[i]), nm.n[i], nm.w[i], i);
                                       }
                                   }).peaks(params, s, radius, nm);
         if (keep != nullptr) {
             *keep = Voters{origin, {}, {}, {}};
-            keep->point.reserve(voters);
-            keep->normal.reserve(voters);
-            keep->weight.reserve(voters);
-            for (std::uint32_t i = 0; i < s.view.size; ++i) {
-                if (nm.w[i] > kVotes) {
-                    keep->point.push_back(s.at[i]);
-                    keep->normal.push_back(nm.n[i]);
-                    keep->weight.push_back(nm.w[i]);
-                }
+            keep->point.reserve(voters.size());
+            keep->normal.reserve(voters.size());
+            keep->weight.reserve(voters.size());
+            for (const std::uint32_t i : voters) {
+                keep->point.push_back(s.at[i]);
+                keep->normal.push_back(nm.n[i]);
+                keep->weight.push_back(nm.w[i]);
             }
         }
         return found;
