@@ -345,9 +345,14 @@ TEST(SphereVote, PodsSplitFarApartAreJoinedWhereTheirWallRingsTheJoin) {
     const long wrong = misassigned(r.labels, s.truth);
     ASSERT_GE(wrong, 0);
     EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 100));
-    // Without the wider window, or demanding a perfect ring, most pods count twice.
-    EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, {.join_far = 1.6}).cluster_count, 16u);
-    EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, {.join_ring = 1}).cluster_count, 16u);
+    // Without the wider window, or demanding a perfect ring, most pods count twice (the votes'
+    // line left out: at 10 spacings it is read from 1 R and joins them too).
+    EXPECT_GE(
+        sphere_vote(XyzView(s.cloud), s.label, {.join_far = 1.6, .join_line = 0}).cluster_count,
+        16u);
+    EXPECT_GE(
+        sphere_vote(XyzView(s.cloud), s.label, {.join_ring = 1, .join_line = 0}).cluster_count,
+        16u);
 }
 
 TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot) {
@@ -390,6 +395,47 @@ TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot
     // Without the line some long fruit count in parts.
     params.join_line = 0;
     EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, params).cluster_count, fruit + 3);
+}
+
+TEST(SphereVote, ResolvedLongFruitAreJoinedByTheirLineFromOneRadiusApart) {
+    // Banana-like fruit as above, 5 spacings thick (R spans over 4 spacings): a finger's centres
+    // lie 1-2 R apart as often as 2-4 R, and at this resolution the vote balls stay apart, so
+    // the line is read from 1 R (from 2 R below 4 spacings). Two lying side by side and four
+    // touching spheres in a row stay apart.
+    Scene s;
+    std::uint32_t id = 1;
+    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
+                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
+    const std::vector<Eigen::Vector3d> tilts = {{0, 0, 0}, {0.1, 0.2, 0.3}};
+    const double r = 5 * std::cbrt(2.8);  // the equatorial radius 5
+    for (const auto& tilt : tilts) {
+        for (const auto& axis : axes) {
+            add_spheroid(s, Eigen::Vector3d(-150.0 * id, 0, 0), r, 2.8, axis + tilt, id);
+            ++id;
+        }
+    }
+    add_spheroid(s, Eigen::Vector3d(0, 250, 0), r, 2.8, axes[2], id);
+    add_spheroid(s, Eigen::Vector3d(0, 250, 0) + 10 * axes[2].unitOrthogonal(), r, 2.8, axes[2],
+                 id + 1);
+    std::replace(s.label.begin(), s.label.end(), id + 1, id);  // one DBSCAN cluster
+    id += 2;
+    std::vector<Ball> row;
+    for (int b = 0; b < 4; ++b) {
+        row.push_back({Eigen::Vector3d(0, -250, 0) + 10.5 * b * axes[4].normalized(), 5});
+    }
+    add_shells(s, row, id, id);
+    const std::uint32_t fruit = id + 3;  // 12 + 2 + 4
+    const SphereVoteResult r1 = sphere_vote(XyzView(s.cloud), s.label, {.min_relative_size = 0.1});
+    EXPECT_EQ(r1.cluster_count, fruit);
+    const long wrong = misassigned(r1.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 50));
+    // The line alone (the profile joining nothing: join_convex 2) joins all but one fruit's
+    // centres (read from 2 R, 30 counted); without it, the parts count apart.
+    SphereVoteParams line_alone{.join_convex = 2, .min_relative_size = 0.1};
+    EXPECT_LE(sphere_vote(XyzView(s.cloud), s.label, line_alone).cluster_count, fruit + 1);
+    line_alone.join_line = 0;
+    EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, line_alone).cluster_count, fruit + 12);
 }
 
 TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {

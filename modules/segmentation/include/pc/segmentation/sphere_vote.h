@@ -83,8 +83,10 @@ struct SphereVoteParams {
     double join_resolution = 6;
     double coarse_joins = 0.2;
     /// Long fruit (bananas, aspect near 3: three or four centres along the axis, the middles
-    /// beyond reach of either end): centres 2 to join_line_far × R apart are also one fruit where
-    /// the votes fill the line between them: every stretch of about peak_radius × R between the
+    /// beyond reach of either end): centres 2 to join_line_far × R apart (from 1 R where R spans
+    /// 4 spacings or more and the votes around both centres spread along the line between them:
+    /// a finger's lie on its axis, a round fruit's in a ball) are also one fruit where the votes
+    /// fill the line between them: every stretch of about peak_radius × R between the
     /// two centres' vote balls holds, within peak_radius × R of the line, at least join_line ×
     /// the density of votes in the weaker ball (0: never). Traced over 84 matrix scenes, of the
     /// pairs 2-4 R apart that the profile did not join: 1428 of 2499 pairs of one fruit's
