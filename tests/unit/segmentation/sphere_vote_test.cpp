@@ -355,36 +355,42 @@ TEST(SphereVote, PodsSplitFarApartAreJoinedWhereTheirWallRingsTheJoin) {
         16u);
 }
 
-TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot) {
-    // Banana-like fruit (aspect 2.8, 3.5 spacings thick): the normals of the middle meet the long
-    // axis all along it, so the centres found lie in a row on the axis, a middle beyond reach of
-    // the ends' (its points kept apart, or the body's profile read as a waist). Twelve alone in
-    // many orientations, and two lying side by side, touching along their length (one DBSCAN
-    // cluster): the votes fill the line between one fruit's centres, not the stretch across the
-    // two. Four touching spheres as thick in a row (2.1 R apart) leave it empty too.
-    Scene s;
+/// Banana-like fruit (aspect 2.8, equatorial radius `e`): twelve alone in many orientations, and
+/// two lying side by side, touching along their length (one DBSCAN cluster); and four touching
+/// spheres of radius `e` in a row (2.1 e apart). Returns the number of fruit, 18.
+std::uint32_t add_long_fruit(Scene& s, double e) {
+    const double r = e * std::cbrt(2.8);  // of the sphere of the same volume
     std::uint32_t id = 1;
     const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
                                                {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
     const std::vector<Eigen::Vector3d> tilts = {{0, 0, 0}, {0.1, 0.2, 0.3}};
     for (const auto& tilt : tilts) {
         for (const auto& axis : axes) {
-            add_spheroid(s, Eigen::Vector3d(-100.0 * id, 0, 0), 5, 2.8, axis + tilt, id);
+            add_spheroid(s, Eigen::Vector3d(-30 * e * id, 0, 0), r, 2.8, axis + tilt, id);
             ++id;
         }
     }
-    const double e = 5 / std::cbrt(2.8);  // the equatorial radius
-    add_spheroid(s, Eigen::Vector3d(0, 150, 0), 5, 2.8, axes[2], id);
-    add_spheroid(s, Eigen::Vector3d(0, 150, 0) + 2 * e * axes[2].unitOrthogonal(), 5, 2.8, axes[2],
-                 id + 1);
+    const Eigen::Vector3d pair(0, 50 * e, 0);
+    add_spheroid(s, pair, r, 2.8, axes[2], id);
+    add_spheroid(s, pair + 2 * e * axes[2].unitOrthogonal(), r, 2.8, axes[2], id + 1);
     std::replace(s.label.begin(), s.label.end(), id + 1, id);  // one DBSCAN cluster
     id += 2;
     std::vector<Ball> row;
     for (int b = 0; b < 4; ++b) {
-        row.push_back({Eigen::Vector3d(0, -150, 0) + 2.1 * e * b * axes[4].normalized(), e});
+        row.push_back({Eigen::Vector3d(0, -50 * e, 0) + 2.1 * e * b * axes[4].normalized(), e});
     }
     add_shells(s, row, id, id);
-    const std::uint32_t fruit = id + 3;  // 12 + 2 + 4
+    return id + 3;  // 12 + 2 + 4
+}
+
+TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot) {
+    // Banana-like fruit 3.5 spacings thick: the normals of the middle meet the long axis all
+    // along it, so the centres found lie in a row on the axis, a middle beyond reach of the
+    // ends' (its points kept apart, or the body's profile read as a waist). The votes fill the
+    // line between one fruit's centres, not the stretch across the two lying side by side; the
+    // four touching spheres in a row leave it empty too.
+    Scene s;
+    const std::uint32_t fruit = add_long_fruit(s, 5 / std::cbrt(2.8));
     // (the end crumbs that DBSCAN clusters leave dropped, as the chain's presets do)
     SphereVoteParams params{.min_relative_size = 0.1};
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, params);
@@ -398,36 +404,14 @@ TEST(SphereVote, LongFruitAreJoinedWhereTheirVotesFillTheLineRowsOfSpheresAreNot
 }
 
 TEST(SphereVote, ResolvedLongFruitAreJoinedByTheirLineFromOneRadiusApart) {
-    // Banana-like fruit as above, 5 spacings thick (R spans over 4 spacings): a finger's centres
-    // lie 1-2 R apart as often as 2-4 R, and at this resolution the vote balls stay apart, so
-    // the line is read from 1 R (from 2 R below 4 spacings). Two lying side by side and four
-    // touching spheres in a row stay apart.
+    // As above, 5 spacings thick (R spans over 4 spacings): a finger's centres lie 1-2 R apart
+    // as often as 2-4 R, and at this resolution the vote balls stay apart, so the line is read
+    // from 1 R (from 2 R below 4 spacings).
     Scene s;
-    std::uint32_t id = 1;
-    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
-                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
-    const std::vector<Eigen::Vector3d> tilts = {{0, 0, 0}, {0.1, 0.2, 0.3}};
-    const double r = 5 * std::cbrt(2.8);  // the equatorial radius 5
-    for (const auto& tilt : tilts) {
-        for (const auto& axis : axes) {
-            add_spheroid(s, Eigen::Vector3d(-150.0 * id, 0, 0), r, 2.8, axis + tilt, id);
-            ++id;
-        }
-    }
-    add_spheroid(s, Eigen::Vector3d(0, 250, 0), r, 2.8, axes[2], id);
-    add_spheroid(s, Eigen::Vector3d(0, 250, 0) + 10 * axes[2].unitOrthogonal(), r, 2.8, axes[2],
-                 id + 1);
-    std::replace(s.label.begin(), s.label.end(), id + 1, id);  // one DBSCAN cluster
-    id += 2;
-    std::vector<Ball> row;
-    for (int b = 0; b < 4; ++b) {
-        row.push_back({Eigen::Vector3d(0, -250, 0) + 10.5 * b * axes[4].normalized(), 5});
-    }
-    add_shells(s, row, id, id);
-    const std::uint32_t fruit = id + 3;  // 12 + 2 + 4
-    const SphereVoteResult r1 = sphere_vote(XyzView(s.cloud), s.label, {.min_relative_size = 0.1});
-    EXPECT_EQ(r1.cluster_count, fruit);
-    const long wrong = misassigned(r1.labels, s.truth);
+    const std::uint32_t fruit = add_long_fruit(s, 5);
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.min_relative_size = 0.1});
+    EXPECT_EQ(r.cluster_count, fruit);
+    const long wrong = misassigned(r.labels, s.truth);
     ASSERT_GE(wrong, 0);
     EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 50));
     // The line alone (the profile joining nothing: join_convex 2) joins all but one fruit's
