@@ -358,6 +358,12 @@ SHAPE_PARTS = [
 # hang) of indigo (70,55,140: hue 251, between the dark blue (236) and the violet (283) fruit
 # so far, saturated: damsons, indigo berries), each in a quarter of the part's scenes; leafy
 # exports, silver bark, colour noise and dense clouds kept.
+# 'held-out-40' (4241-4340, session 52, after held-out-39 was scored, before any method for it)
+# adds cucumber-like fruit (20 mm for a sphere of the same volume, aspect 3.5: longer than the
+# bananas, hanging single or in pairs, 60 in a canopy of 1.6 m, as greenhouse cucumbers and
+# long peppers hang) of rose (215,90,130: hue 334, between the magenta (325) and the coral (7)
+# fruit so far), each in a quarter of the part's scenes; leafy exports, silver bark, colour
+# noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -456,6 +462,10 @@ WOOD_PARTS = [
      {'lime': (0.025, '--species apple --fruit-radius 0.025 --bunch-min 1 --bunch-max 2 '
                       '--touch-gap 0.002 --fruit-count 100 --canopy 0.8,0.8,0.65 --shell 0')},
      {'indigo': (70, 55, 140)}, set(), WITH_SILVER),
+    ('held-out-40', 2067,
+     {'cucumber': (0.020, '--species apple --fruit-radius 0.02 --bunch-min 1 --bunch-max 2 '
+                          '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
+     {'rose': (215, 90, 130)}, set(), WITH_SILVER),
 ]
 
 
@@ -493,6 +503,7 @@ ASPECTS['coconut'] = 1.2
 ASPECTS['eggplant'] = 2.5
 ASPECTS['strawberry'] = 1.25
 ASPECTS['lime'] = 1.1
+ASPECTS['cucumber'] = 3.5
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
