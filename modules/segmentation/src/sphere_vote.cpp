@@ -906,17 +906,19 @@ constexpr double kLineNearFine = 1;
 constexpr double kAlong = 2;
 constexpr double kAlongWithin = 0.5;
 
-/// The pairs of `peaks` (j < k, sorted) `line_near` to join_line_far × R apart whose `votes` fill
-/// the line between them (Votes::line at least join_line).
+/// The pairs of `peaks` (j < k, sorted) kLineNear (kLineNearFine, where R spans kLineFine
+/// sample spacings `ss` or more, with kAlong) to join_line_far × R apart whose `votes` fill the
+/// line between them (Votes::line at least join_line).
 std::vector<std::pair<std::uint32_t, std::uint32_t>> line_pairs(const std::vector<Peak>& peaks,
                                                                 const Votes& votes,
                                                                 double R,
-                                                                const SphereVoteParams& params,
-                                                                double line_near) {
+                                                                double ss,
+                                                                const SphereVoteParams& params) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> lines;
     if (peaks.empty()) {
         return lines;
     }
+    const double line_near = R >= kLineFine * ss ? kLineNearFine : kLineNear;
     const double far = params.join_line_far * R;
     const CentreGrid near(peaks, far);
     // The votes around `a` lie along the line to `b` (kAlong).
@@ -1573,8 +1575,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
     if (params.join_near > 0) {
         std::vector<std::pair<std::uint32_t, std::uint32_t>> lines;
         if (params.join_line > 0) {
-            lines = line_pairs(peaks, cast_again(R, voters), R, params,
-                               R >= kLineFine * ss ? kLineNearFine : kLineNear);
+            lines = line_pairs(peaks, cast_again(R, voters), R, ss, params);
             voters = Voters{};
         }
         if (R >= params.join_resolution * ss) {
