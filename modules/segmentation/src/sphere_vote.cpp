@@ -390,24 +390,6 @@ struct Peak {
     double radius = 0;
 };
 
-/// A peak is sharp (a fruit's centre, not a stretch of the diffuse shell the wrong-side votes
-/// make) where its support, the votes within its radius r, is at least kSharp × the votes within
-/// 2 r: a round fruit's votes meet in a point (about 1), a shell's patch is a disc (1/4).
-constexpr double kSharp = 0.45;
-/// ... or, where R spans kLinePeaks sample spacings or more, at least kSharpLine × them where
-/// the votes within 2 r lie along a line (their second moment's middle eigenvalue at most
-/// kLineFlat × the largest): a long fruit's votes lie on its axis, whose ball of r holds about
-/// half of the ball of 2 r's, and at 3-5 spacings they read 0.3-0.45 (the 40 of 120 solid
-/// bananas of scene 3785 that had no centre and went to a neighbour's: their candidates' flatness
-/// 0.16-0.38, the shell's 0.37-0.79). At 2 spacings the few votes in a ball read as a line by
-/// chance (round fruit there gained and lost centres, 28 scenes of 500 changed), and R must span
-/// the same for every R a cloud tries (a bunch's R above, the fruit's below, would compare
-/// centres found two ways). The 68 banana- and eggplant-like scenes 0.647 -> 0.68
-/// (docs/robustness-history.md, session 53).
-constexpr double kSharpLine = 0.3;
-constexpr double kLineFlat = 0.25;
-constexpr double kLinePeaks = 3;
-
 /// A point votes where its normal's weight (1 − λ₁/λ₂) is above this: its surroundings are flat
 /// enough for a normal.
 constexpr float kVotes = 0.2f;
@@ -473,16 +455,14 @@ public:
     }
 
     /// Fruit centres: local maxima of the 3x3x3 cell sums, refined by mean shift within
-    /// peak_radius × R, sharp (most of the votes within twice that lie within it, or, with
-    /// `lines`, many of them and on a line: kSharp, kSharpLine),
+    /// peak_radius × R, sharp (most of the votes within twice that lie within it),
     /// peak_separation × R apart, strongest first, each supported by at least min_support × the
     /// typical fruit's votes that no stronger fruit explains, from more than one side
     /// (max_alignment), on a surface curved two ways (min_two_way).
     std::vector<Peak> peaks(const SphereVoteParams& params,
                             const Sample& s,
                             double fruit_radius,
-                            const Normals& nm,
-                            bool lines) const {
+                            const Normals& nm) const {
         const double radius = params.peak_radius * fruit_radius,
                      separation = params.peak_separation * fruit_radius;
         std::vector<double> box(keys_.size(), 0.0);
@@ -525,18 +505,13 @@ public:
                     std::lexicographical_compare(a.centre.data(), a.centre.data() + 3,
                                                  b.centre.data(), b.centre.data() + 3));
         });
-        // Sharp (kSharp; with `lines`, also kSharpLine on a line of votes). Asked only of peaks
-        // that could be kept (it reads 8 times the cells of a support).
+        // Sharp: most of the votes within 2 radius are within radius (a true centre), not a
+        // stretch of the diffuse shell the wrong-side votes make. Asked only of peaks that could
+        // be kept (it reads 8 times the cells of a support).
         std::vector<std::int8_t> sharp(found.size(), -1);
         const auto is_sharp = [&](std::size_t k) {
             if (sharp[k] < 0) {
-                const V3& c = found[k].centre;
-                const double around = gather(c, 2 * radius);
-                sharp[k] = found[k].support >= kSharp * around ||
-                                   (lines && found[k].support >= kSharpLine * around &&
-                                    flatness(c, 2 * radius) <= kLineFlat)
-                               ? 1
-                               : 0;
+                sharp[k] = found[k].support >= 0.45 * gather(found[k].centre, 2 * radius) ? 1 : 0;
             }
             return sharp[k] == 1;
         };
@@ -706,17 +681,6 @@ private:
                           }
                       }
                   });
-    }
-    /// The votes within `radius` of `at`: the middle eigenvalue of their weighted second moment
-    /// about it over the largest (about 0 on a line, 1 on a disc or in a ball).
-    [[nodiscard]] double flatness(const V3& at, double radius) const {
-        Eigen::Matrix3d m = Eigen::Matrix3d::Zero();
-        for_votes_within(at, radius, [&](const Entry& e) {
-            const V3 q = e.at.cast<double>() - at;
-            m += e.w * q * q.transpose();
-        });
-        const V3 ev = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(m).eigenvalues();
-        return ev(2) > 0 ? ev(1) / ev(2) : 1;
     }
     [[nodiscard]] double gather(const V3& at, double radius) const {
         double sum = 0;
@@ -1458,7 +1422,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
                                       for (const std::uint32_t i : voters) {
                                           f(vec(s.view[i]), nm.n[i], nm.w[i], i);
                                       }
-                                  }).peaks(params, s, radius, nm, radius >= kLinePeaks * ss);
+                                  }).peaks(params, s, radius, nm);
         if (keep != nullptr) {
             *keep = Voters{origin, {}, {}, {}};
             keep->point.reserve(voters.size());
