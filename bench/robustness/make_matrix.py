@@ -364,6 +364,12 @@ SHAPE_PARTS = [
 # long peppers hang) of rose (215,90,130: hue 334, between the magenta (325) and the coral (7)
 # fruit so far), each in a quarter of the part's scenes; leafy exports, silver bark, colour
 # noise and dense clouds kept.
+# 'held-out-41' (4341-4440, session 53, after held-out-40 was scored, before any method for it)
+# adds avocado-like fruit (40 mm, aspect 1.4, single, only 15 in a canopy of 1.6 m: few large
+# fruit among many leaves and branches, where the median cluster is a leaf's or a branch's) of
+# khaki (140,130,60: hue 53, a dull yellow just outside the foliage band's yellow edge, value
+# 0.55: russet pears, olive-drab figs), each in a quarter of the part's scenes; leafy exports,
+# silver bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -466,6 +472,10 @@ WOOD_PARTS = [
      {'cucumber': (0.020, '--species apple --fruit-radius 0.02 --bunch-min 1 --bunch-max 2 '
                           '--touch-gap 0.002 --fruit-count 60 --canopy 0.8,0.8,0.65')},
      {'rose': (215, 90, 130)}, set(), WITH_SILVER),
+    ('held-out-41', 2068,
+     {'avocado': (0.040, '--species apple --fruit-radius 0.04 --bunch-min 1 --bunch-max 1 '
+                         '--fruit-count 15 --canopy 0.8,0.8,0.65')},
+     {'khaki': (140, 130, 60)}, set(), WITH_SILVER),
 ]
 
 
@@ -504,6 +514,7 @@ ASPECTS['eggplant'] = 2.5
 ASPECTS['strawberry'] = 1.25
 ASPECTS['lime'] = 1.1
 ASPECTS['cucumber'] = 3.5
+ASPECTS['avocado'] = 1.4
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
