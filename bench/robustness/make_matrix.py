@@ -370,6 +370,13 @@ SHAPE_PARTS = [
 # khaki (140,130,60: hue 53, a dull yellow just outside the foliage band's yellow edge, value
 # 0.55: russet pears, olive-drab figs), each in a quarter of the part's scenes; leafy exports,
 # silver bark, colour noise and dense clouds kept.
+# 'held-out-42' (4441-4540, session 54, after held-out-41 was scored, before any method for it)
+# adds nectarine-like fruit (32 mm, round, single or in pairs 0-1 mm apart, 120 on a tree of
+# 2.4 m: the issue's own kind of fruit, round and smooth, on a tree half again as wide as any
+# round fruit's so far) of sage (150,165,130: hue 86, saturation 0.21, a grey-green inside the
+# foliage band and under the pale greens' saturation: unripe quinces, grey-green pears and
+# feijoas under their bloom), each in a quarter of the part's scenes; leafy exports, silver
+# bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -476,6 +483,10 @@ WOOD_PARTS = [
      {'avocado': (0.040, '--species apple --fruit-radius 0.04 --bunch-min 1 --bunch-max 1 '
                          '--fruit-count 15 --canopy 0.8,0.8,0.65')},
      {'khaki': (140, 130, 60)}, set(), WITH_SILVER),
+    ('held-out-42', 2069,
+     {'nectarine': (0.032, '--species apple --fruit-radius 0.032 --bunch-min 1 --bunch-max 2 '
+                           '--touch-gap 0.001 --fruit-count 120 --canopy 1.2,1.2,0.9')},
+     {'sage': (150, 165, 130)}, set(), WITH_SILVER),
 ]
 
 
@@ -515,6 +526,7 @@ ASPECTS['strawberry'] = 1.25
 ASPECTS['lime'] = 1.1
 ASPECTS['cucumber'] = 3.5
 ASPECTS['avocado'] = 1.4
+ASPECTS['nectarine'] = 1.0
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
