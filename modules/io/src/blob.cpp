@@ -193,6 +193,28 @@ Blob copy_points(const Blob& blob, std::span<const std::uint32_t> indices) {
     return out;
 }
 
+bool append_points(Blob& to, const Blob& from) {
+    const auto same = [](const pcl::PCLPointField& a, const pcl::PCLPointField& b) {
+        return a.name == b.name && a.offset == b.offset && a.datatype == b.datatype &&
+               a.count == b.count;
+    };
+    const std::size_t step = to.cloud.point_step;
+    if (from.cloud.point_step != step ||
+        !std::equal(to.cloud.fields.begin(), to.cloud.fields.end(), from.cloud.fields.begin(),
+                    from.cloud.fields.end(), same)) {
+        return false;
+    }
+    const std::size_t n = to.size() + from.size();
+    to.cloud.data.resize(to.size() * step);
+    to.cloud.data.insert(to.cloud.data.end(), from.cloud.data.begin(),
+                         from.cloud.data.begin() + static_cast<std::ptrdiff_t>(from.size() * step));
+    to.cloud.width = static_cast<std::uint32_t>(n);
+    to.cloud.height = 1;
+    to.cloud.row_step = static_cast<std::uint32_t>(n * step);
+    to.cloud.is_dense = to.cloud.is_dense && from.cloud.is_dense;
+    return true;
+}
+
 void keep_flagged(Blob& blob, std::span<const std::uint8_t> flags, bool keep_set) {
     const std::size_t step = blob.cloud.point_step;
     const std::size_t n = blob.size();

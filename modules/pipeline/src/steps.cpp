@@ -3,6 +3,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <unordered_set>
 
 #include <pc/core/error.h>
 #include <pc/core/stats.h>
@@ -641,6 +642,59 @@ double spread(const io::Blob& cloud) {
     return std::sqrt(d2);
 }
 
+/// The foliage-green points are counted with the rule's where this share of them or more lies
+/// on the rule's fruit (share_near_parts: within about a fruit radius of a counted part's
+/// points), in a cloud whose rule is clean fruit (its centres claim kDoubtfulRule of its points
+/// or more): a cloud of fruit alone (segmented or cropped, no leaves) whose fruit are partly
+/// green (Fuji and Gala apples: red over yellow-green), whose green side the rule drops, and
+/// fruit blushed on a small cap then keep too few points to be found. Apple trees of 215
+/// fruit, SfM at 75 spacings a radius, a red blush over 5-90 % of each yellow-green fruit and
+/// no leaves: 0.95-1.0 of the green points near the parts; the matrix's leafy trees 0.02-0.08
+/// (docs/robustness-history.md, session 54).
+constexpr double kOwnGreens = 0.5;
+constexpr const char* kOwnGreensNote =
+    " and the foliage-green points on its fruit (the fruit's own green side: ";
+
+/// The share of the points of `cloud` that lie within about `r` of a point of a counted part
+/// (label >= 1) of `labelled`: cubes r/2 wide hold the parts' points, and a point is near where
+/// its cube or one of the 26 around it holds one (within r/2 at least, 1.7 r at most). 0 for an
+/// empty cloud or r <= 0.
+double share_near_parts(const io::Blob& cloud, const io::Blob& labelled, double r) {
+    if (cloud.size() == 0 || labelled.size() == 0 || !(r > 0)) {
+        return 0;
+    }
+    const double cell = 0.5 * r;
+    const auto key = [&](const pcl::PointXYZ& q, int dx, int dy, int dz) {
+        const auto at = [&](float v, int d) {  // 21 bits an axis
+            return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / cell)) + d +
+                                              (std::int64_t{1} << 20)) &
+                   0x1FFFFFu;
+        };
+        return at(q.x, dx) << 42 | at(q.y, dy) << 21 | at(q.z, dz);
+    };
+    std::unordered_set<std::uint64_t> parts;
+    {
+        const io::XyzPoints points(labelled);
+        const std::vector<std::uint32_t> label = io::labels(labelled, "label");
+        for (std::size_t i = 0; i < label.size(); ++i) {
+            if (label[i] >= 1) {
+                parts.insert(key(points.view()[i], 0, 0, 0));
+            }
+        }
+    }
+    const io::XyzPoints points(cloud);
+    const XyzView& v = points.view();
+    std::size_t near = 0;
+    for (std::size_t i = 0; i < v.size; ++i) {
+        bool found = false;
+        for (int d = 0; d < 27 && !found; ++d) {
+            found = parts.count(key(v[i], d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1)) > 0;
+        }
+        near += found ? 1 : 0;
+    }
+    return static_cast<double>(near) / static_cast<double>(v.size);
+}
+
 /// A colour candidate kept: its run, the rule in words, the rule, and the share of its points
 /// its fruit centres claim.
 struct Kept {
@@ -1028,6 +1082,39 @@ ChainResult by_shape(io::Blob in,
     }
     if (ruled && c.classes.size() != 2) {
         return ruled_run();
+    }
+    // The rule is clean fruit and its green points lie on its fruit (kOwnGreens): every
+    // saturated point is counted, and kept where its centres claim it as clean fruit's do.
+    if (by_rule && c.greens && rule_claimed >= kDoubtfulRule &&
+        (c.classes.size() != 2 || c.rule_first)) {
+        filters::ColorFilterParams saturated = c.greens->rule;
+        saturated.hue_deg.reset();
+        const double r = step_value(*by_rule, "recursive_split", "fruit_radius").value_or(0);
+        const double near =
+            greens ? share_near_parts(*greens, by_rule->labelled, r)
+                   : share_near_parts(io::copy_points(in, colour_kept(in, c.greens->rule)),
+                                      by_rule->labelled, r);
+        std::optional<io::Blob> both;
+        if (near >= kOwnGreens && greens) {  // the input went into the rule's run
+            both = by_rule->labelled;
+            io::remove_field(*both, "label");
+            if (!io::append_points(*both, *greens)) {
+                both.reset();
+            }
+        } else if (near >= kOwnGreens) {
+            both = io::copy_points(in, colour_kept(in, saturated));
+        }
+        if (both) {
+            ChainResult run =
+                chain_after(colour_step(std::move(*both), points_in, saturated), rest, {});
+            if (const double g = claims(run); g >= kDoubtfulRule) {
+                return done(std::move(run), &saturated,
+                            c.reason + kOwnGreensNote + share(near) +
+                                " of them lie on it; its fruit centres claim " + share(g) +
+                                " of the points, " + share(rule_claimed) + " of the rule's)",
+                            c.warnings);
+            }
+        }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
         return done(std::move(*by_rule), c.rule ? &*c.rule : nullptr,

@@ -85,6 +85,34 @@ TEST(Blob, CopyPointsTakesAnyOrderAndLeavesTheSourceAlone) {
     EXPECT_THROW((void)copy_points(b, std::vector<std::uint32_t>{5}), Error);
 }
 
+TEST(Blob, AppendPointsJoinsCloudsOfOneLayoutOnly) {
+    const auto make = [](std::size_t n, double base) {
+        return test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT16}}, n, 1,
+                               [&](std::size_t i, std::size_t k, std::uint32_t) {
+                                   return k == 0 ? base + i * 0.5 : base + i;
+                               });
+    };
+    Blob a = make(3, 0);
+    const Blob b = make(2, 100), whole = make(5, 0);
+    ASSERT_TRUE(append_points(a, b));
+    ASSERT_EQ(a.size(), 5u);
+    EXPECT_EQ(a.cloud.height, 1u);
+    EXPECT_EQ(a.cloud.row_step, 5u * a.cloud.point_step);
+    const std::size_t step = a.cloud.point_step;
+    EXPECT_EQ(0, std::memcmp(a.cloud.data.data(), whole.cloud.data.data(), 3 * step));
+    EXPECT_EQ(0, std::memcmp(a.cloud.data.data() + 3 * step, b.cloud.data.data(), 2 * step));
+    // another field list: nothing appended
+    const Blob other = test::make_blob({{"x", F::FLOAT32}, {"id", F::UINT32}}, 2, 1,
+                                       [](std::size_t, std::size_t, std::uint32_t) { return 1.0; });
+    const Blob before = a;
+    EXPECT_FALSE(append_points(a, other));
+    EXPECT_EQ(a.cloud.data, before.cloud.data);
+    EXPECT_EQ(a.size(), 5u);
+    Blob empty = empty_like(b);
+    ASSERT_TRUE(append_points(empty, b));
+    EXPECT_EQ(empty.cloud.data, b.cloud.data);
+}
+
 TEST(Blob, KeepPointsRejectsOutOfRangeRepeatedAndUnorderedIndices) {
     for (const std::vector<std::uint32_t>& idx : {std::vector<std::uint32_t>{3}, {1, 1}, {2, 0}}) {
         Blob b = test::random_xyz(3);

@@ -56,6 +56,11 @@ void keep_points(Blob& blob, std::span<const std::uint32_t> indices);
 /// field: a subset copied out, the source untouched. Throws pc::Error on a bad index.
 [[nodiscard]] Blob copy_points(const Blob& blob, std::span<const std::uint32_t> indices);
 
+/// Appends the points of `from` after those of `to` where both have the same fields (name,
+/// offset, datatype, count) and point_step; returns false and leaves `to` as it was otherwise.
+/// The result is unorganised (height 1).
+bool append_points(Blob& to, const Blob& from);
+
 /// Keeps the points whose flag is set (`keep_set`) or clear (not `keep_set`), one flag per point,
 /// in place as keep_points(), with no list of indices (4 bytes a kept point). Throws pc::Error
 /// when the flags are not one per point.
