@@ -650,17 +650,28 @@ double spread(const io::Blob& cloud) {
 /// fruit blushed on a small cap then keep too few points to be found. Apple trees of 215
 /// fruit, SfM at 75 spacings a radius, a red blush over 5-90 % of each yellow-green fruit and
 /// no leaves: 0.95-1.0 of the green points near the parts; the matrix's leafy trees 0.02-0.08
-/// (docs/robustness-history.md, session 54).
+/// (docs/robustness-history.md, session 54). The other way round as well: where the green
+/// points win (the rule's, red caps on a few fruit, are claimed less) and the rule's points lie
+/// on their fruit, the rule's are the fruit's other side, not bark (session 55).
 constexpr double kOwnGreens = 0.5;
 constexpr const char* kOwnGreensNote =
     " and the foliage-green points on its fruit (the fruit's own green side: ";
+constexpr const char* kOwnBlushNote =
+    " and the colour rule's points on their fruit (the fruit's own other side: ";
 
-/// The share of the points of `cloud` that lie within about `r` of a point of a counted part
-/// (label >= 1) of `labelled`: cubes r/2 wide hold the parts' points, and a point is near where
-/// its cube or one of the 26 around it holds one (within r/2 at least, 1.7 r at most). 0 for an
-/// empty cloud or r <= 0.
-double share_near_parts(const io::Blob& cloud, const io::Blob& labelled, double r) {
-    if (cloud.size() == 0 || labelled.size() == 0 || !(r > 0)) {
+/// The share of the points of `cloud` (those of `which`, or all where it is null) that lie
+/// within about `r` of a point of a counted part (label >= 1) of `labelled`: cubes r/2 wide hold
+/// the parts' points, and a point is near where its cube or one of the 26 around it holds one
+/// (within r/2 at least, 1.7 r at most). Judged on every k-th point, kNearSample points at most
+/// (a share, not a tail: a leafy cloud of 1M points spent 4 % of its time on every green point).
+/// 0 for no point or r <= 0.
+constexpr std::size_t kNearSample = 10000;
+double share_near_parts(const io::Blob& cloud,
+                        const Indices* which,
+                        const io::Blob& labelled,
+                        double r) {
+    const std::size_t n = which != nullptr ? which->size() : cloud.size();
+    if (n == 0 || labelled.size() == 0 || !(r > 0)) {
         return 0;
     }
     const double cell = 0.5 * r;
@@ -684,15 +695,17 @@ double share_near_parts(const io::Blob& cloud, const io::Blob& labelled, double 
     }
     const io::XyzPoints points(cloud);
     const XyzView& v = points.view();
-    std::size_t near = 0;
-    for (std::size_t i = 0; i < v.size; ++i) {
+    const std::size_t stride = std::max<std::size_t>(1, n / kNearSample);
+    std::size_t near = 0, judged = 0;
+    for (std::size_t k = 0; k < n; k += stride, ++judged) {
+        const pcl::PointXYZ q = v[which != nullptr ? (*which)[k] : k];
         bool found = false;
         for (int d = 0; d < 27 && !found; ++d) {
-            found = parts.count(key(v[i], d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1)) > 0;
+            found = parts.count(key(q, d % 3 - 1, d / 3 % 3 - 1, d / 9 - 1)) > 0;
         }
         near += found ? 1 : 0;
     }
-    return static_cast<double>(near) / static_cast<double>(v.size);
+    return static_cast<double>(near) / static_cast<double>(judged);
 }
 
 /// A colour candidate kept: its run, the rule in words, the rule, and the share of its points
@@ -936,6 +949,46 @@ ChainResult by_shape(io::Blob in,
         }
         return out;
     };
+    // The fruit's two colour sides (kOwnGreens): where the points of `other` (those of `which`,
+    // or all) lie on the fruit counted in `run`, every saturated point is counted, from the input
+    // where it is intact, else from the points of `one` and `two` joined (each side's, a label
+    // field dropped), and the run kept where its centres claim kDoubtfulRule of its points or
+    // more (leaves or bark with the fruit lower the claim): the run, the share near and the claim.
+    struct Sides {
+        ChainResult run;
+        double near = 0;
+        double claim = 0;
+    };
+    std::optional<filters::ColorFilterParams> saturated;
+    const auto both_sides = [&](const ChainResult& run, const io::Blob& other, const Indices* which,
+                                const io::Blob* one, const io::Blob* two) -> std::optional<Sides> {
+        const double r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
+        const double near = share_near_parts(other, which, run.labelled, r);
+        if (!c.greens || near < kOwnGreens) {
+            return std::nullopt;
+        }
+        saturated = c.greens->rule;
+        saturated->hue_deg.reset();
+        io::Blob joined;
+        if (one == nullptr) {
+            joined = io::copy_points(in, colour_kept(in, *saturated));
+        } else {
+            joined = *one;
+            io::remove_field(joined, "label");
+            std::optional<io::Blob> unlabelled;  // a copy only where `two` has labels
+            if (io::find_field(*two, "label") != nullptr) {
+                unlabelled = *two;
+                io::remove_field(*unlabelled, "label");
+            }
+            if (!io::append_points(joined, unlabelled ? *unlabelled : *two)) {
+                return std::nullopt;
+            }
+        }
+        ChainResult both =
+            chain_after(colour_step(std::move(joined), points_in, *saturated), rest, {});
+        const double g = claims(both);
+        return g >= kDoubtfulRule ? std::optional(Sides{std::move(both), near, g}) : std::nullopt;
+    };
     // Where the colours offer no groups, the rule, the green and the pale points are the only
     // candidates: the green and the pale points are set aside (a copy of each alone) and the rule
     // counted on the input itself, not on a copy of it (a cloud of 1M points would peak at over
@@ -1064,10 +1117,24 @@ ChainResult by_shape(io::Blob in,
     // claim more by kClaimsMore, and more than the pale points'.
     if (c.greens && c.classes.size() != 2 && rule_claimed < kDoubtfulRule) {
         ChainResult green = count_class(greens ? *greens : in, c.greens->rule);
-        greens.reset();
         const double g = claims(green);
         if (auto out = pale_fruit(std::max(g, beat + kClaimsMore))) {
             return std::move(*out);
+        }
+        // ... and the rule's points, where they lie on the green fruit: the fruit's other side
+        // (yellow-green fruit under a red blush on a small cap), not bark.
+        std::optional<Sides> both;
+        if (g > beat + kClaimsMore && by_rule) {
+            both = both_sides(green, by_rule->labelled, nullptr, greens ? &*greens : nullptr,
+                              &by_rule->labelled);
+        }
+        greens.reset();
+        if (both) {
+            return done(std::move(both->run), &*saturated,
+                        c.greens->reason + kOwnBlushNote + share(both->near) +
+                            " of them lie on it; its fruit centres claim " + share(both->claim) +
+                            " of the points, " + share(g) + " of the green points')",
+                        c.warnings);
         }
         if (g > beat + kClaimsMore) {
             return done(std::move(green), &c.greens->rule,
@@ -1083,37 +1150,18 @@ ChainResult by_shape(io::Blob in,
     if (ruled && c.classes.size() != 2) {
         return ruled_run();
     }
-    // The rule is clean fruit and its green points lie on its fruit (kOwnGreens): every
-    // saturated point is counted, and kept where its centres claim it as clean fruit's do.
+    // The rule is clean fruit and its green points lie on its fruit: the fruit's green side.
     if (by_rule && c.greens && rule_claimed >= kDoubtfulRule &&
         (c.classes.size() != 2 || c.rule_first)) {
-        filters::ColorFilterParams saturated = c.greens->rule;
-        saturated.hue_deg.reset();
-        const double r = step_value(*by_rule, "recursive_split", "fruit_radius").value_or(0);
-        const double near =
-            greens ? share_near_parts(*greens, by_rule->labelled, r)
-                   : share_near_parts(io::copy_points(in, colour_kept(in, c.greens->rule)),
-                                      by_rule->labelled, r);
-        std::optional<io::Blob> both;
-        if (near >= kOwnGreens && greens) {  // the input went into the rule's run
-            both = by_rule->labelled;
-            io::remove_field(*both, "label");
-            if (!io::append_points(*both, *greens)) {
-                both.reset();
-            }
-        } else if (near >= kOwnGreens) {
-            both = io::copy_points(in, colour_kept(in, saturated));
-        }
+        const Indices green = greens ? Indices{} : colour_kept(in, c.greens->rule);
+        auto both = greens ? both_sides(*by_rule, *greens, nullptr, &by_rule->labelled, &*greens)
+                           : both_sides(*by_rule, in, &green, nullptr, nullptr);
         if (both) {
-            ChainResult run =
-                chain_after(colour_step(std::move(*both), points_in, saturated), rest, {});
-            if (const double g = claims(run); g >= kDoubtfulRule) {
-                return done(std::move(run), &saturated,
-                            c.reason + kOwnGreensNote + share(near) +
-                                " of them lie on it; its fruit centres claim " + share(g) +
-                                " of the points, " + share(rule_claimed) + " of the rule's)",
-                            c.warnings);
-            }
+            return done(std::move(both->run), &*saturated,
+                        c.reason + kOwnGreensNote + share(both->near) +
+                            " of them lie on it; its fruit centres claim " + share(both->claim) +
+                            " of the points, " + share(rule_claimed) + " of the rule's)",
+                        c.warnings);
         }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
