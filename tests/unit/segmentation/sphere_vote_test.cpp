@@ -422,6 +422,82 @@ TEST(SphereVote, ResolvedLongFruitAreJoinedByTheirLineFromOneRadiusApart) {
     EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, line_alone).cluster_count, fruit + 12);
 }
 
+/// Lattice points (spacing 1) inside solid banana-like fruit (aspect 2.8, equatorial radius
+/// `e`, axis `axis`) centred at `centres`, ids from `first_id`, all in one DBSCAN cluster; a
+/// point inside two goes to the one it lies deeper in.
+void add_solid_long_fruit(Scene& s,
+                          const std::vector<Eigen::Vector3d>& centres,
+                          double e,
+                          const Eigen::Vector3d& axis,
+                          std::uint32_t first_id) {
+    const Eigen::Vector3d a = axis.normalized();
+    const double half = 2.8 * e;
+    // (x/e)² across plus (x/half)² along: under 1 inside
+    const auto depth = [&](const Eigen::Vector3d& q) {
+        const double t = q.dot(a);
+        return (q - t * a).squaredNorm() / (e * e) + t * t / (half * half);
+    };
+    Eigen::Vector3d lo = centres[0], hi = centres[0];
+    for (const auto& c : centres) {
+        lo = lo.cwiseMin(c - Eigen::Vector3d::Constant(half));
+        hi = hi.cwiseMax(c + Eigen::Vector3d::Constant(half));
+    }
+    for (double x = std::floor(lo.x()) + 0.5; x <= hi.x(); ++x) {
+        for (double y = std::floor(lo.y()) + 0.5; y <= hi.y(); ++y) {
+            for (double z = std::floor(lo.z()) + 0.5; z <= hi.z(); ++z) {
+                const Eigen::Vector3d p(x, y, z);
+                std::size_t best = centres.size();
+                double best_depth = 1;
+                for (std::size_t f = 0; f < centres.size(); ++f) {
+                    const double d = depth(p - centres[f]);
+                    if (d <= best_depth) {
+                        best = f;
+                        best_depth = d;
+                    }
+                }
+                if (best < centres.size()) {
+                    s.add(p, first_id + static_cast<std::uint32_t>(best), first_id);
+                }
+            }
+        }
+    }
+}
+
+TEST(SphereVote, SolidLongFruitSideBySideEachKeepTheirCentres) {
+    // Solid bananas 5 spacings thick, in hands of six lying side by side along their length
+    // (touching), each hand one DBSCAN cluster, and twelve alone. A finger's votes lie on its axis:
+    // a line, whose ball of the peak radius holds about half the votes of the ball twice as wide,
+    // near the sharpness asked of a round fruit's point-like centre (0.45), so without the line's
+    // own sharpness some fingers had no centre and went to a neighbour's or to the hand's rest.
+    Scene s;
+    const double e = 5;
+    std::uint32_t id = 1;
+    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0.2}, {0.3, -0.5, 0.8}};
+    for (std::size_t h = 0; h < axes.size(); ++h) {
+        const Eigen::Vector3d across = axes[h].unitOrthogonal();
+        std::vector<Eigen::Vector3d> hand;
+        for (int f = 0; f < 6; ++f) {
+            hand.push_back(Eigen::Vector3d(80.0 * h, 0, 0) + (2 * e + 0.5) * f * across);
+        }
+        add_solid_long_fruit(s, hand, e, axes[h], id);
+        id += 6;
+        for (int f = 0; f < 4; ++f) {  // and four alone (the fruit size is read from clusters)
+            add_solid_long_fruit(s, {Eigen::Vector3d(80.0 * h, 80 + 40.0 * f, 0)}, e, axes[h], id);
+            ++id;
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.min_relative_size = 0.1});
+    EXPECT_TRUE(r.solid);
+    EXPECT_EQ(r.cluster_count, id - 1);
+    // Without the line's sharpness 11.5 % of the points went to the wrong part; with it (in
+    // the final fit: the claim that R and the colour classes were judged by is the plain fit's,
+    // 83 %) 5 % (the ends of fingers beyond reach of their centre, which a hand's DBSCAN cluster
+    // keeps together, and so the count is right either way).
+    const long wrong = misassigned(r.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 10));
+}
+
 TEST(SphereVote, FruitThatDbscanCutIntoPiecesAreStillMeasuredAndJoined) {
     // As DBSCAN leaves an SfM fruit whose far side is sparse: the upper half of each fruit in
     // one piece, the lower half in pieces of about 12 points (cells of 4 spacings), points
