@@ -953,15 +953,17 @@ ChainResult by_shape(io::Blob in,
     // or all) lie on the fruit counted in `run`, every saturated point is counted, from the input
     // where it is intact, else from the points of `one` and `two` joined (each side's, a label
     // field dropped), and the run kept where its centres claim kDoubtfulRule of its points or
-    // more (leaves or bark with the fruit lower the claim): the run, the share near and the claim.
+    // more (leaves or bark with the fruit lower the claim): the run and its rule's text, `reason`
+    // (which ends in the note that opens the parenthesis) followed by the share near, the claim
+    // and what it was compared with (`compared`).
     struct Sides {
         ChainResult run;
-        double near = 0;
-        double claim = 0;
+        std::string rule;
     };
     std::optional<filters::ColorFilterParams> saturated;
     const auto both_sides = [&](const ChainResult& run, const io::Blob& other, const Indices* which,
-                                const io::Blob* one, const io::Blob* two) -> std::optional<Sides> {
+                                const io::Blob* one, const io::Blob* two, const std::string& reason,
+                                const std::string& compared) -> std::optional<Sides> {
         const double r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
         const double near = share_near_parts(other, which, run.labelled, r);
         if (!c.greens || near < kOwnGreens) {
@@ -987,7 +989,12 @@ ChainResult by_shape(io::Blob in,
         ChainResult both =
             chain_after(colour_step(std::move(joined), points_in, *saturated), rest, {});
         const double g = claims(both);
-        return g >= kDoubtfulRule ? std::optional(Sides{std::move(both), near, g}) : std::nullopt;
+        if (g < kDoubtfulRule) {
+            return std::nullopt;
+        }
+        return Sides{std::move(both), reason + share(near) +
+                                          " of them lie on it; its fruit centres claim " +
+                                          share(g) + " of the points, " + compared + ")"};
     };
     // Where the colours offer no groups, the rule, the green and the pale points are the only
     // candidates: the green and the pale points are set aside (a copy of each alone) and the rule
@@ -1126,15 +1133,12 @@ ChainResult by_shape(io::Blob in,
         std::optional<Sides> both;
         if (g > beat + kClaimsMore && by_rule) {
             both = both_sides(green, by_rule->labelled, nullptr, greens ? &*greens : nullptr,
-                              &by_rule->labelled);
+                              &by_rule->labelled, c.greens->reason + kOwnBlushNote,
+                              share(g) + " of the green points'");
         }
         greens.reset();
         if (both) {
-            return done(std::move(both->run), &*saturated,
-                        c.greens->reason + kOwnBlushNote + share(both->near) +
-                            " of them lie on it; its fruit centres claim " + share(both->claim) +
-                            " of the points, " + share(g) + " of the green points')",
-                        c.warnings);
+            return done(std::move(both->run), &*saturated, std::move(both->rule), c.warnings);
         }
         if (g > beat + kClaimsMore) {
             return done(std::move(green), &c.greens->rule,
@@ -1154,14 +1158,13 @@ ChainResult by_shape(io::Blob in,
     if (by_rule && c.greens && rule_claimed >= kDoubtfulRule &&
         (c.classes.size() != 2 || c.rule_first)) {
         const Indices green = greens ? Indices{} : colour_kept(in, c.greens->rule);
-        auto both = greens ? both_sides(*by_rule, *greens, nullptr, &by_rule->labelled, &*greens)
-                           : both_sides(*by_rule, in, &green, nullptr, nullptr);
+        const std::string reason = c.reason + kOwnGreensNote;
+        const std::string compared = share(rule_claimed) + " of the rule's";
+        auto both = greens ? both_sides(*by_rule, *greens, nullptr, &by_rule->labelled, &*greens,
+                                        reason, compared)
+                           : both_sides(*by_rule, in, &green, nullptr, nullptr, reason, compared);
         if (both) {
-            return done(std::move(both->run), &*saturated,
-                        c.reason + kOwnGreensNote + share(both->near) +
-                            " of them lie on it; its fruit centres claim " + share(both->claim) +
-                            " of the points, " + share(rule_claimed) + " of the rule's)",
-                        c.warnings);
+            return done(std::move(both->run), &*saturated, std::move(both->rule), c.warnings);
         }
     }
     if (c.classes.size() != 2 || (c.rule_first && rule_claimed >= kDoubtfulRule)) {
@@ -1195,8 +1198,11 @@ ChainResult by_shape(io::Blob in,
     if (finer) {
         return done(std::move(finer->run), finer->colour, finer->rule);
     }
-    if (!kept_best) {
-        if (auto out = pale_fruit(std::max(claimed[0], claimed[1]) + kClaimsMore)) {
+    // Neither group is clearly the fruit (none kept, or the one kept is claimed under
+    // kDoubtfulRule): pale fruit (sage, 150, 165, 130) whose colours lie within the foliage's
+    // hues, where the greens' values offered the two groups, may be the pale points.
+    if (!kept_best || claimed[best] < kDoubtfulRule) {
+        if (auto out = pale_fruit(claimed[best] + kClaimsMore)) {
             return std::move(*out);
         }
     }
