@@ -383,6 +383,13 @@ SHAPE_PARTS = [
 # value 0.27, inside the foliage band and darker than the leaves: Hass avocados, dark unripe
 # fruit in shade), each in a quarter of the part's scenes; leafy exports, silver bark, colour
 # noise and dense clouds kept.
+# 'held-out-44' (4641-4740, session 56, after held-out-43 was scored, before any method for it)
+# adds caper-like fruit (9 mm, aspect 1.3, single or in pairs 2 mm apart, 250 on a tree of
+# 2.4 m: many small fruit spread thin over a large tree, the fruit's radius under 0.4 % of the
+# canopy's width, where the smallest fruit so far hung in bunches or on smaller plants) of
+# glaucous (95,135,150: hue 196, a blue-green under a grey bloom, between the teal (171) and the
+# bloom-blue (223) fruit so far: juniper berries, unripe blueberries), each in a quarter of the
+# part's scenes; leafy exports, silver bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -497,6 +504,10 @@ WOOD_PARTS = [
      {'persimmon': (0.035, '--species apple --fruit-radius 0.035 --bunch-min 1 --bunch-max 1 '
                            '--fruit-count 50 --canopy 0.8,0.8,0.65')},
      {'hass': (55, 70, 45)}, set(), WITH_SILVER),
+    ('held-out-44', 2071,
+     {'caper': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 1 --bunch-max 2 '
+                       '--touch-gap 0.002 --fruit-count 250 --canopy 1.2,1.2,0.9')},
+     {'glaucous': (95, 135, 150)}, set(), WITH_SILVER),
 ]
 
 
@@ -538,6 +549,7 @@ ASPECTS['cucumber'] = 3.5
 ASPECTS['avocado'] = 1.4
 ASPECTS['nectarine'] = 1.0
 ASPECTS['persimmon'] = 0.8
+ASPECTS['caper'] = 1.3
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
