@@ -1200,7 +1200,7 @@ ChainResult by_shape(io::Blob in,
     }
     // Neither group is clearly the fruit (none kept, or the one kept is claimed under
     // kDoubtfulRule): pale fruit (sage, 150, 165, 130) whose colours lie within the foliage's
-    // hues, where the greens' values offered the two groups, may be the pale points.
+    // hues, where the saturated points' values offered the two groups, may be the pale points.
     if (!kept_best || claimed[best] < kDoubtfulRule) {
         if (auto out = pale_fruit(claimed[best] + kClaimsMore)) {
             return std::move(*out);
