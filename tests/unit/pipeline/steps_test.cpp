@@ -849,7 +849,7 @@ TEST(Chain, CreamFruitBesideGreyBarkAreAGroupOfThePalePoints) {
 /// is claimed 84 %, under kDoubtfulRule, and was kept (54 counted of 40 here before, F1 0.77;
 /// 224 of 50 on the matrix's scene 4510, held-out-42). The pale points compete with a group
 /// kept in doubt: their centres claim 94 % of them.
-TEST(Chain, SageFruitBesideTwoGroupsOfGreensAreThePalePoints) {
+TEST(Chain, SageFruitBesideAGroupKeptInDoubtAreThePalePoints) {
     expect_found_by_shape(beside_bark({150, 165, 130}),
                           {.mode = scenes::Mode::kExplicit, .voxel = 0.01, .leaf_leak = 0.4},
                           "the pale points");
