@@ -4,7 +4,10 @@
 #     bash bench/robustness.sh [--split tune|held-out|held-out-N|all] [--methods "default word ..."]
 #                              [--write-docs] [--rows FILE (only summarise rows written before)]
 #                              [--jobs N (scenes counted N at a time; their seconds then share
-#                              the cores)]
+#                              the cores)] [--ids FILE (only the scenes whose ids FILE lists)]
+#                              [--name NAME (the run's name: rows in build/robustness/rows-NAME.csv,
+#                              each scene's report, cloud and stderr in build/robustness/NAME/;
+#                              default the split's name, or "ids")]
 # Methods: default (pc_fruitcount -i SCENE), word (the default plus the scene's --fruit-color word;
 # needs a pc_fruitcount that has the option), nocolor (--no-color: the geometry alone), radius
 # (the default plus --fruit-radius: the median radius of the fruit present, as a user who knows
@@ -12,6 +15,10 @@
 # preset name (--preset NAME); x:OPT,OPT,... tries options (x:--no-knn,--eps,3xs).
 # Scores: F1 of one-to-one matching at IoU > 0.5 and count error, both against the fruit present in
 # the cloud (a fruit the export lost cannot be counted). Rows: build/robustness/rows-SPLIT.csv.
+# A/B runs of two builds on the same scenes: copy one build's bin/ with `cp -a` (a newer pc_synth
+# would make the scenes again) and run each with its own --name, e.g.
+#     PC_BIN=/tmp/old-bin bash bench/robustness.sh --ids ids.txt --name old --methods default
+# The scenes themselves are made once, in build/robustness/scenes/ (PC_SCENES=DIR: elsewhere).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source bench/lib_scenes.sh
@@ -20,6 +27,8 @@ methods="default word dense paper-dense paper-sparse"
 write_docs=0
 from_rows=
 jobs=1
+ids=
+name=
 while [ $# -gt 0 ]; do
   case $1 in
     --jobs) jobs=$2; shift 2 ;;
@@ -27,6 +36,8 @@ while [ $# -gt 0 ]; do
     --methods) methods=$2; shift 2 ;;
     --write-docs) write_docs=1; shift ;;
     --rows) from_rows=$2; shift 2 ;;
+    --ids) ids=$2; shift 2 ;;
+    --name) name=$2; shift 2 ;;
     *) echo "robustness.sh: unknown argument '$1'" >&2; exit 2 ;;
   esac
 done
@@ -35,9 +46,16 @@ if [ -n "$from_rows" ]; then
   rows=$from_rows
 else
 [ -x $b/pc_fruitcount ] || { bash scripts/setup.sh >/dev/null && bash scripts/build.sh >/dev/null; }
+if [ -n "$ids" ]; then
+  [ -r "$ids" ] || { echo "robustness.sh: cannot read the ids file '$ids'" >&2; exit 2; }
+  name=${name:-ids}
+fi
+name=${name:-$split}
 dir=build/robustness
-mkdir -p "$dir/scenes"
-rows=$dir/rows-$split.csv
+scenes=${PC_SCENES:-$dir/scenes}
+runs=$dir/$name
+mkdir -p "$scenes" "$runs"
+rows=$dir/rows-$name.csv
 echo "id,split,family,mode,r_over_s,noise,colour,units,method,present,count,f1,count_error,seconds,warnings" >"$rows"
 # the colour words pc_fruitcount knows (scenes of other colours have no `word` row)
 words=$($b/pc_fruitcount --help | tr -s ' \n' ' ' | grep -o -- '--fruit-color arg[^:]*: [a-z, ]*' || true)
@@ -50,8 +68,8 @@ score_scene() {
   local id part family mode rs noise colour units args stem present method extra start end score out
   local count f1 warnings
   IFS='|' read -r id part family mode rs noise colour units args <<<"$1"
-  stem=$dir/scenes/$id
-  rm -f "$stem.rows"
+  stem=$scenes/$id
+  rm -f "$runs/$id.rows"
   if [ ! -f "$stem.json" ] || [ $b/pc_synth -nt "$stem.json" ]; then
     # shellcheck disable=SC2086
     $b/pc_synth $args -o "$stem.pcd" --truth "$stem.json"
@@ -71,8 +89,8 @@ print(statistics.median(f["radius"] for f in t["fruits"] if f["points"] > 0))' "
     esac
     # the method's files: ID.out.pcd, ID.report.json, ID.err for the default, ID.METHOD.* for
     # the others (so that the default's stay to be read after a run of several methods)
-    out=$stem
-    [ "$method" = default ] || out=$stem.${method//[^A-Za-z0-9_-]/_}
+    out=$runs/$id
+    [ "$method" = default ] || out=$runs/$id.${method//[^A-Za-z0-9_-]/_}
     start=$(date +%s.%N)
     if $b/pc_fruitcount -i "$stem.pcd" "${extra[@]}" --cloud "$out.out.pcd" -o "$out.report.json" 2>"$out.err"; then
       end=$(date +%s.%N)
@@ -84,23 +102,33 @@ print(statistics.median(f["radius"] for f in t["fruits"] if f["points"] > 0))' "
     warnings=$(grep -c 'warning' "$out.err" || true)
     awk -v a="$start" -v b="$end" -v c="$count" -v p="$present" -v f1="$f1" -v w="$warnings" \
         -v row="$id,$part,$family,$mode,$rs,$noise,$colour,$units,$method" \
-        'BEGIN { e = p > 0 ? (c - p) / p : 0; printf "%s,%s,%s,%.4f,%.4f,%.2f,%s\n", row, p, c, f1, e, b - a, w }' >>"$stem.rows"
+        'BEGIN { e = p > 0 ? (c - p) / p : 0; printf "%s,%s,%s,%.4f,%.4f,%.2f,%s\n", row, p, c, f1, e, b - a, w }' >>"$runs/$id.rows"
   done
 }
 export -f score_scene
-export b dir methods words
+export b scenes runs methods words
+listed=" $(tr -s ' \t\n' ' ' <"${ids:-/dev/null}") "
 selected=()
 while IFS= read -r line; do
   part=$(cut -d'|' -f2 <<<"$line")
-  case $split in  # "all" is every part scored so far: the unscored held-out parts only by name
-    all) [[ " $unscored " == *" $part "* ]] && continue ;;
-    *) [ "$part" = "$split" ] || continue ;;
-  esac
+  if [ -n "$ids" ]; then  # the listed scenes of the parts scored so far
+    [[ "$listed" == *" ${line%%|*} "* ]] || continue
+    if [[ " $unscored " == *" $part "* ]]; then
+      echo "robustness.sh: scene ${line%%|*} left out: $part is scored only by name" >&2
+      continue
+    fi
+  else
+    case $split in  # "all" is every part scored so far: the unscored held-out parts only by name
+      all) [[ " $unscored " == *" $part "* ]] && continue ;;
+      *) [ "$part" = "$split" ] || continue ;;
+    esac
+  fi
   selected+=("$line")
 done <bench/robustness/scenes.txt
+[ ${#selected[@]} -gt 0 ] || { echo "robustness.sh: no scene selected" >&2; exit 2; }
 printf '%s\n' "${selected[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'score_scene "$1"' _ {}
 for line in "${selected[@]}"; do
-  cat "$dir/scenes/${line%%|*}.rows" >>"$rows"
+  cat "$runs/${line%%|*}.rows" >>"$rows"
 done
 fi
 
@@ -144,6 +172,7 @@ table=$(awk -F, -v first="${methods%% *}" '
 echo "$table"
 if [ $write_docs = 1 ]; then
   how="--split $split"
+  [ -n "$ids" ] && how="--ids $ids"
   [ -n "$from_rows" ] && how="--rows $from_rows"
   stamp="Generated by \`bash bench/robustness.sh $how --methods \"$methods\" --write-docs\` at commit $(git rev-parse --short HEAD 2>/dev/null || echo unknown) on $(nproc) cores (whole process per scene, this shared VM). Rows: \`${from_rows:-build/robustness/rows-$split.csv}\`. F1 and count error against the fruit present in each cloud."
   write_generated docs/robustness.md "Robustness" "$(printf '%s\n\n%s' "$stamp" "$table")"
