@@ -1215,6 +1215,20 @@ ChainResult by_shape(io::Blob in,
     const std::string each = " (each group counted alone: fruit centres claimed " +
                              share(claimed[0]) + " and " + share(claimed[1]) + " of their points" +
                              of_rule + ")";
+    // Neither group is the fruit: green fruit darker than the leaves (hass, 55, 70, 45), whose
+    // points fall with the shaded leaves and the bark in the darker group of value, may be the
+    // green points, where their centres claim as fruit's do and clearly more than either group
+    // and the rule (as where the colours offer no groups).
+    if (c.greens) {
+        ChainResult green = count_class(in, c.greens->rule);
+        const double g = claims(green);
+        if (g >= kFruitClaims && g > std::max(claimed[best], rule_claimed) + kClaimsMore) {
+            return done(std::move(green), &c.greens->rule,
+                        c.greens->reason + " (their fruit centres claim " + share(g) +
+                            " of their points; " + each.substr(2),
+                        {kBarkKept});
+        }
+    }
     if (!c.rule) {  // grey colours whose groups are no fruit: every point, as without groups
         c.reason += each;
         return chain_after(apply_choice(all ? std::move(*all) : std::move(in), std::move(c)), p,

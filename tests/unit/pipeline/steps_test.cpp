@@ -855,6 +855,32 @@ TEST(Chain, SageFruitBesideAGroupKeptInDoubtAreThePalePoints) {
                           "the pale points");
 }
 
+/// Hass-green fruit (55, 70, 45: hue 86, inside the foliage band, darker than the leaves) in
+/// bunches beside near-black bark (60, 50, 45), surfaces sampled at 3 mm with noise and colour
+/// noise (matrix scene 4608, held-out-43, in small): the saturated points form two groups of
+/// value, and the darker holds the fruit with the shaded leaves and the bark. Neither group,
+/// counted alone, is claimed as fruit are (24 % and under), and the rule's points were counted
+/// (50 of 20 here before; 737 of 150 on 4608). The green points' centres claim 69 % of them.
+TEST(Chain, HassFruitWhereNeitherGroupOfValueIsTheFruitAreTheGreenPoints) {
+    scenes::SceneParams sp = bunches_beside_bark(0.012, {2, 6}, {55, 70, 45}, 3, {60, 50, 45});
+    sp.fruit_count = 20;
+    sp.canopy = {0.2, 0.2, 0.16};
+    sp.touch_gap = 0.001;
+    sp.overlap = 0.1;
+    sp.aspect = 0.95;
+    sp.aspect_spread = 0.1;
+    sp.trunk_radius = 0.073;
+    sp.seed = 4;
+    expect_found_by_shape(sp,
+                          {.mode = scenes::Mode::kSurface,
+                           .voxel = 0.003,
+                           .noise = 0.03,
+                           .shading = 0,
+                           .color_noise = 12,
+                           .seed = 4},
+                          "each group counted alone");
+}
+
 /// Green fruit beside bark, their surfaces sampled at 2 mm with noise, over the dark ground
 /// (whose points lie within a centimetre of a plane: a slab five spacings thick): the ground is
 /// pale (unsaturated), and counted alone it is one "fruit" of its own size that its one centre
