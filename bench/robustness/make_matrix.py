@@ -390,6 +390,13 @@ SHAPE_PARTS = [
 # glaucous (95,135,150: hue 196, a blue-green under a grey bloom, between the teal (171) and the
 # bloom-blue (223) fruit so far: juniper berries, unripe blueberries), each in a quarter of the
 # part's scenes; leafy exports, silver bark, colour noise and dense clouds kept.
+# 'held-out-45' (4741-4840, session 57, after held-out-44 was scored, before any method for it)
+# adds sloe-like fruit (7 mm, round, single or in pairs 1 mm apart, 300 anywhere in a dense
+# shrub of 1.6 m (--shell 0): many small fruit deep among the leaves and twigs, as blackthorn
+# and juniper bear them) of slate (70,75,95: hue 228, saturation 0.26, value 0.37: a dark
+# blue-grey on the saturation line, under colour noise half its points pale: sloes and damsons
+# under their bloom in shade), each in a quarter of the part's scenes; leafy exports, silver
+# bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -508,6 +515,10 @@ WOOD_PARTS = [
      {'caper': (0.009, '--species plum --fruit-radius 0.009 --bunch-min 1 --bunch-max 2 '
                        '--touch-gap 0.002 --fruit-count 250 --canopy 1.2,1.2,0.9')},
      {'glaucous': (95, 135, 150)}, set(), WITH_SILVER),
+    ('held-out-45', 2072,
+     {'sloe': (0.007, '--species plum --fruit-radius 0.007 --bunch-min 1 --bunch-max 2 '
+                      '--touch-gap 0.001 --fruit-count 300 --canopy 0.8,0.8,0.7 --shell 0')},
+     {'slate': (70, 75, 95)}, set(), WITH_SILVER),
 ]
 
 
@@ -550,6 +561,7 @@ ASPECTS['avocado'] = 1.4
 ASPECTS['nectarine'] = 1.0
 ASPECTS['persimmon'] = 0.8
 ASPECTS['caper'] = 1.3
+ASPECTS['sloe'] = 1.0
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
