@@ -379,7 +379,7 @@ SHAPE_PARTS = [
 # bark, colour noise and dense clouds kept.
 # 'held-out-43' (4541-4640, session 55, after held-out-42 was scored, before any method for it)
 # adds persimmon-like fruit (35 mm, oblate, aspect 0.8, single, 50 on a tree of 1.6 m: flattened
-# fruit, where the only oblate ones so far were the saturn peaches) of hass (55,70,45: hue 101,
+# fruit, where the only oblate ones so far were the saturn peaches) of hass (55,70,45: hue 96,
 # value 0.27, inside the foliage band and darker than the leaves: Hass avocados, dark unripe
 # fruit in shade), each in a quarter of the part's scenes; leafy exports, silver bark, colour
 # noise and dense clouds kept.

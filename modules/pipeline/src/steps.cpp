@@ -1217,8 +1217,8 @@ ChainResult by_shape(io::Blob in,
                              of_rule + ")";
     // Neither group is the fruit: green fruit darker than the leaves (hass, 55, 70, 45), whose
     // points fall with the shaded leaves and the bark in the darker group of value, may be the
-    // green points, where their centres claim as fruit's do and clearly more than either group
-    // and the rule (as where the colours offer no groups).
+    // green points, where their centres claim as a group kept must (kFruitClaims) and clearly
+    // more than either group and the rule (kClaimsMore, as the greens where no groups are offered).
     if (c.greens) {
         ChainResult green = count_class(in, c.greens->rule);
         const double g = claims(green);

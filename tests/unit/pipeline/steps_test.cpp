@@ -855,7 +855,7 @@ TEST(Chain, SageFruitBesideAGroupKeptInDoubtAreThePalePoints) {
                           "the pale points");
 }
 
-/// Hass-green fruit (55, 70, 45: hue 86, inside the foliage band, darker than the leaves) in
+/// Hass-green fruit (55, 70, 45: hue 96, inside the foliage band, darker than the leaves) in
 /// bunches beside near-black bark (60, 50, 45), surfaces sampled at 3 mm with noise and colour
 /// noise (matrix scene 4608, held-out-43, in small): the saturated points form two groups of
 /// value, and the darker holds the fruit with the shaded leaves and the bark. Neither group,
