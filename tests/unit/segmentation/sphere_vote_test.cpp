@@ -722,6 +722,59 @@ TEST(SphereVote, RandomSolidsAreMeasuredByTheirPointsNotTheirOuterLayer) {
     EXPECT_LT(outer.fruit_radius, 9.0) << "the outer layer alone reads short";
 }
 
+TEST(SphereVote, RandomSolidsOfTwoVoxelsARadiusKeepTheRadiusTheirSparseNormalsCannotRefit) {
+    // Forty bunches of four balls of radius 2 ± 20 % whose centres lie 2.1 apart (touching, a
+    // few interpenetrating), 34 points each at random in the volume at radius 2 (ρ = 1: two
+    // "voxels" a radius, 3.5 median spacings): the first neighbourhoods (half the rough size)
+    // measure R; the refit at half that (the floor of 2 spacings, a handful of points of a
+    // solid) finds a plane in under a third as many neighbourhoods, and its lines met at 1.5 R.
+    // Without the usable check: R 2.58, 78 parts, 28 fruit alone in theirs (matrix scene 990,
+    // cherries of 12 mm: R 16.3, 111 counted of 150; 157 now). The filled-ball refit still reads
+    // such bunches about a tenth large (2.22 here: parts of neighbours' points; 120 alone).
+    const double r = 2;
+    Scene s;
+    Rng rng(7);
+    std::uint32_t id = 1;
+    for (std::uint32_t b = 0; b < 40; ++b) {
+        const Eigen::Vector3d at(14.0 * (b % 8), 14.0 * (b / 8), 0);
+        const double d = 2.1 * r;
+        for (const Eigen::Vector3d& c :
+             {at, Eigen::Vector3d(at + Eigen::Vector3d(d, 0, 0)),
+              Eigen::Vector3d(at + Eigen::Vector3d(0.5 * d, 0.866 * d, 0)),
+              Eigen::Vector3d(at + Eigen::Vector3d(0.5 * d, 0.289 * d, 0.816 * d))}) {
+            const double ri = r * (1 + 0.2 * rng.uniform(-1, 1));
+            const auto points = static_cast<int>(std::lround(34 * std::pow(ri / r, 3)));
+            for (int n = 0; n < points;) {
+                const Eigen::Vector3d q(rng.uniform(-ri, ri), rng.uniform(-ri, ri),
+                                        rng.uniform(-ri, ri));
+                if (q.norm() <= ri) {
+                    s.add(c + q, id, b + 1);
+                    ++n;
+                }
+            }
+            ++id;
+        }
+    }
+    const SphereVoteResult got = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_TRUE(got.solid);
+    EXPECT_NEAR(got.fruit_radius, r, 0.15 * r);
+    EXPECT_NEAR(static_cast<double>(got.cluster_count), 160.0, 0.1 * 160);
+    // fruit whose points' largest share went to a part no other fruit's did
+    std::map<std::uint32_t, std::map<std::uint32_t, int>> votes;
+    for (std::size_t k = 0; k < s.truth.size(); ++k) {
+        ++votes[s.truth[k]][got.labels[k]];
+    }
+    std::map<std::uint32_t, int> owners;
+    for (const auto& [fruit, v] : votes) {
+        ++owners[std::max_element(v.begin(), v.end(), [](const auto& a, const auto& b) {
+                     return a.second < b.second;
+                 })->first];
+    }
+    const auto alone = std::count_if(owners.begin(), owners.end(),
+                                     [](const auto& o) { return o.first != 0 && o.second == 1; });
+    EXPECT_GE(alone, 100) << "of 160";
+}
+
 TEST(SphereVote, TheSolidTestReadsNeighbourhoodsOfMostOfTheCloudFromAFewOfTheirPoints) {
     // A first size larger than the cloud (the tree's wood kept by a colour rule): each of the
     // solid test's neighbourhoods is the whole cloud, fitted from about a thousand of its points:
@@ -742,10 +795,12 @@ TEST(SphereVote, TheSolidTestReadsNeighbourhoodsOfMostOfTheCloudFromAFewOfTheirP
 TEST(SphereVote, BunchesOfSmallSolidFruitAreNotReadAsOneFruit) {
     // Twelve bunches of 13 touching balls (a ball and its 12 neighbours, as grapes pack), 40
     // points each at random in the volume (about 3.5 spacings a radius): the normals of a
-    // bunch's outer layer meet at the bunch's scale, so the first R is a bunch's (1.7 r) and its
-    // centres claim 13 % of the points. Measured again from normals of a quarter of it, R is a
-    // grape's and its centres claim most points. (With 20-30 points a grape the bunches look
-    // like single balls whose centres claim every point: no second look, pc_fruitcount warns.)
+    // bunch's outer layer read 1.2 r, and the points given to their centres, a bunch's
+    // neighbours among them, spread as a ball's of 1.4 r (the filled-ball refit; 1.7 r from the
+    // sparse refit of the normals before session 58): its centres claim under half the points.
+    // Measured again from normals of a quarter of it, R is a grape's and its centres claim most
+    // points. (With 20-30 points a grape the bunches look like single balls whose centres claim
+    // every point: no second look, pc_fruitcount warns.)
     const double r = 1.0;
     Scene s;
     Rng rng(5);
@@ -774,8 +829,7 @@ TEST(SphereVote, BunchesOfSmallSolidFruitAreNotReadAsOneFruit) {
         }
     }
     const SphereVoteResult once = sphere_vote(XyzView(s.cloud), s.label, {.recheck_below = 0});
-    const SphereVoteResult r2 = sphere_vote(XyzView(s.cloud), s.label, {});
-    EXPECT_GT(once.fruit_radius, 1.5 * r) << "without the second look R is a bunch's";
+    EXPECT_GT(once.fruit_radius, 1.3 * r) << "without the second look R is a bunch's";
     EXPECT_LT(once.claimed, 0.5);
     EXPECT_LT(once.cluster_count, 60u);
     const SphereVoteResult again = sphere_vote(XyzView(s.cloud), s.label, {});
