@@ -397,6 +397,12 @@ SHAPE_PARTS = [
 # blue-grey on the saturation line, under colour noise half its points pale: sloes and damsons
 # under their bloom in shade), each in a quarter of the part's scenes; leafy exports, silver
 # bark, colour noise and dense clouds kept.
+# 'held-out-46' (4841-4940, session 58, after held-out-45 was scored, before any method for it)
+# adds tamarillo-like fruit (25 mm, egg-shaped, aspect 1.5, in bunches of 2-5 touching 1 mm
+# apart, 80 on a tree of 2 m: long fruit hanging side by side, where the long fruit so far hung
+# alone or in hands) of taupe (150,130,115: hue 26, saturation 0.23, value 0.59: a grey-brown
+# near the barks' colours: russeted and scurfy fruit, sapodillas, medlars in shade), each in a
+# quarter of the part's scenes; leafy exports, silver bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -519,6 +525,10 @@ WOOD_PARTS = [
      {'sloe': (0.007, '--species plum --fruit-radius 0.007 --bunch-min 1 --bunch-max 2 '
                       '--touch-gap 0.001 --fruit-count 300 --canopy 0.8,0.8,0.7 --shell 0')},
      {'slate': (70, 75, 95)}, set(), WITH_SILVER),
+    ('held-out-46', 2073,
+     {'tamarillo': (0.025, '--species plum --fruit-radius 0.025 --bunch-min 2 --bunch-max 5 '
+                           '--touch-gap 0.001 --fruit-count 80 --canopy 1.0,1.0,0.8')},
+     {'taupe': (150, 130, 115)}, set(), WITH_SILVER),
 ]
 
 
@@ -562,6 +572,7 @@ ASPECTS['nectarine'] = 1.0
 ASPECTS['persimmon'] = 0.8
 ASPECTS['caper'] = 1.3
 ASPECTS['sloe'] = 1.0
+ASPECTS['tamarillo'] = 1.5
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
