@@ -88,6 +88,19 @@ void add_solids(Scene& s,
     }
 }
 
+/// `points` points uniform in the volume of ball `b` (drawn in its cube, those outside left out).
+void add_random_ball(
+    Scene& s, Rng& rng, const Ball& b, int points, std::uint32_t id, std::uint32_t cluster) {
+    for (int n = 0; n < points;) {
+        const Eigen::Vector3d q(rng.uniform(-b.r, b.r), rng.uniform(-b.r, b.r),
+                                rng.uniform(-b.r, b.r));
+        if (q.norm() <= b.r) {
+            s.add(b.centre + q, id, cluster);
+            ++n;
+        }
+    }
+}
+
 /// Three lone fruit and a bunch of four touching ones (DBSCAN's one cluster), radius r.
 std::vector<std::pair<std::vector<Ball>, std::uint32_t>> layout(double r) {
     const double d = 2 * r;
@@ -703,15 +716,7 @@ TEST(SphereVote, RandomSolidsAreMeasuredByTheirPointsNotTheirOuterLayer) {
     std::uint32_t id = 1;
     for (const auto& [balls, cluster] : layout(10)) {
         for (const Ball& b : balls) {
-            for (int n = 0; n < 150;) {
-                const Eigen::Vector3d q(rng.uniform(-10, 10), rng.uniform(-10, 10),
-                                        rng.uniform(-10, 10));
-                if (q.norm() <= 10) {
-                    s.add(b.centre + q, id, cluster);
-                    ++n;
-                }
-            }
-            ++id;
+            add_random_ball(s, rng, b, 150, id++, cluster);
         }
     }
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
@@ -744,15 +749,7 @@ TEST(SphereVote, RandomSolidsOfTwoVoxelsARadiusKeepTheRadiusTheirSparseNormalsCa
               Eigen::Vector3d(at + Eigen::Vector3d(0.5 * d, 0.289 * d, 0.816 * d))}) {
             const double ri = r * (1 + 0.2 * rng.uniform(-1, 1));
             const auto points = static_cast<int>(std::lround(34 * std::pow(ri / r, 3)));
-            for (int n = 0; n < points;) {
-                const Eigen::Vector3d q(rng.uniform(-ri, ri), rng.uniform(-ri, ri),
-                                        rng.uniform(-ri, ri));
-                if (q.norm() <= ri) {
-                    s.add(c + q, id, b + 1);
-                    ++n;
-                }
-            }
-            ++id;
+            add_random_ball(s, rng, {c, ri}, points, id++, b + 1);
         }
     }
     const SphereVoteResult got = sphere_vote(XyzView(s.cloud), s.label, {});
@@ -818,14 +815,7 @@ TEST(SphereVote, BunchesOfSmallSolidFruitAreNotReadAsOneFruit) {
             }
         }
         for (const Eigen::Vector3d& c : centres) {
-            for (int n = 0; n < 40;) {
-                const Eigen::Vector3d q(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-r, r));
-                if (q.norm() <= r) {
-                    s.add(c + q, id, b + 1);
-                    ++n;
-                }
-            }
-            ++id;
+            add_random_ball(s, rng, {c, r}, 40, id++, b + 1);
         }
     }
     const SphereVoteResult once = sphere_vote(XyzView(s.cloud), s.label, {.recheck_below = 0});
