@@ -228,10 +228,14 @@ Spread normal_spread(const pcl::PointXYZ& at,
     return out;
 }
 
-/// The share of a sample's normals that measure R (weight 0.5 or more: a neighbourhood of six
-/// points or more, flat enough for a plane).
+/// A normal that measures R: weight this or more (a neighbourhood of six points or more, flat
+/// enough for a plane).
+constexpr float kClearNormal = 0.5f;
+
+/// The share of a sample's normals that measure R (kClearNormal).
 double usable(const Normals& nm) {
-    const auto n = std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w >= 0.5f; });
+    const auto n =
+        std::count_if(nm.w.begin(), nm.w.end(), [](float w) { return w >= kClearNormal; });
     return nm.w.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(nm.w.size());
 }
 
@@ -260,14 +264,14 @@ double radius_from_normals(const Sample& s,
     const search::Grid grid(s.view, h);
     const auto one_way_only = [&](const pcl::PointXYZ& p) {
         const Spread sp = normal_spread(
-            p, h, grid, nm, [&](std::uint32_t j) { return nm.w[j] >= 0.5 ? 1.0 : 0.0; });
+            p, h, grid, nm, [&](std::uint32_t j) { return nm.w[j] >= kClearNormal ? 1.0 : 0.0; });
         return sp.weight >= 5 && sp.eigenvalues(0) < one_way * sp.eigenvalues(1);
     };
     const std::size_t stride = std::max<std::size_t>(1, s.view.size / 20000);
     std::vector<double> dist;
     const double min_sin2 = std::pow(std::sin(5.0 * 3.141592653589793 / 180), 2);
     for (std::size_t i = 0; i < s.view.size; i += stride) {
-        if (nm.w[i] < 0.5) {
+        if (nm.w[i] < kClearNormal) {
             continue;
         }
         const pcl::PointXYZ p = s.view[i];
@@ -279,7 +283,8 @@ double radius_from_normals(const Sample& s,
         }
         int pairs = 0;
         grid.for_each_within(p, h, [&](std::uint32_t j, double d2) {
-            if (pairs >= 4 || s.label[j] != s.label[i] || nm.w[j] < 0.5 || d2 < 0.25 * h * h) {
+            if (pairs >= 4 || s.label[j] != s.label[i] || nm.w[j] < kClearNormal ||
+                d2 < 0.25 * h * h) {
                 return;
             }
             const V3 w0 = feet ? V3(nm.foot[i] - nm.foot[j]) : V3(vec(p) - vec(s.view[j]));
