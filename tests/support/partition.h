@@ -1,6 +1,7 @@
 #pragma once
 // Scoring a labelling against the true objects, for the splitters' tests.
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <set>
@@ -37,6 +38,26 @@ inline long misassigned(const std::vector<std::uint32_t>& got,
         wrong += all - best;
     }
     return wrong;
+}
+
+/// Objects whose points' largest share (majority label) went to a label no other object's did,
+/// noise (0) not counted: the fruit found alone in a part, where misassigned() gives up at the
+/// first merge.
+inline long alone(const std::vector<std::uint32_t>& got, const std::vector<std::uint32_t>& truth) {
+    std::map<std::uint32_t, std::map<std::uint32_t, long>> votes;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+        ++votes[truth[k]][got[k]];
+    }
+    std::map<std::uint32_t, long> owners;
+    for (const auto& [id, v] : votes) {
+        if (id != 0) {
+            ++owners[std::max_element(v.begin(), v.end(), [](const auto& a, const auto& b) {
+                         return a.second < b.second;
+                     })->first];
+        }
+    }
+    return std::count_if(owners.begin(), owners.end(),
+                         [](const auto& o) { return o.first != 0 && o.second == 1; });
 }
 
 }  // namespace pc::test

@@ -756,20 +756,7 @@ TEST(SphereVote, RandomSolidsOfTwoVoxelsARadiusKeepTheRadiusTheirSparseNormalsCa
     EXPECT_TRUE(got.solid);
     EXPECT_NEAR(got.fruit_radius, r, 0.15 * r);
     EXPECT_NEAR(static_cast<double>(got.cluster_count), 160.0, 0.1 * 160);
-    // fruit whose points' largest share went to a part no other fruit's did
-    std::map<std::uint32_t, std::map<std::uint32_t, int>> votes;
-    for (std::size_t k = 0; k < s.truth.size(); ++k) {
-        ++votes[s.truth[k]][got.labels[k]];
-    }
-    std::map<std::uint32_t, int> owners;
-    for (const auto& [fruit, v] : votes) {
-        ++owners[std::max_element(v.begin(), v.end(), [](const auto& a, const auto& b) {
-                     return a.second < b.second;
-                 })->first];
-    }
-    const auto alone = std::count_if(owners.begin(), owners.end(),
-                                     [](const auto& o) { return o.first != 0 && o.second == 1; });
-    EXPECT_GE(alone, 100) << "of 160";
+    EXPECT_GE(test::alone(got.labels, s.truth), 100) << "of 160";
 }
 
 TEST(SphereVote, TheSolidTestReadsNeighbourhoodsOfMostOfTheCloudFromAFewOfTheirPoints) {
