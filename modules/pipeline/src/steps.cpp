@@ -1080,6 +1080,10 @@ ChainResult by_shape(io::Blob in,
         if (!c.pale || rule_claimed >= kDoubtfulRule) {
             return std::nullopt;
         }
+        // ... and always clearly more than the rule (against a group of it, the group's claim is
+        // `than`: grey-blue dates in SfM whose pale points were claimed 87 %, the rule 89.6 %,
+        // 1665: 152 -> 105 of 150 where they were kept).
+        than = std::max(than, rule_claimed + kClaimsMore);
         const io::Blob& from = pale ? *pale : in;
         ChainResult run = count_class(from, c.pale->rule);
         const double g = claims(run);
