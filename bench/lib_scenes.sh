@@ -34,20 +34,29 @@ score_scenes() {
 }
 
 # write_generated DOC TITLE BLOCK [NAME]: replaces the text between the markers of DOC (or creates
-# DOC); NAME tells a page's blocks apart (<!-- BEGIN generated NAME -->).
+# DOC); NAME tells a page's blocks apart (<!-- BEGIN generated NAME -->). The block goes to awk in
+# a file, not as an argument: one argument holds at most 128 KiB (the matrix's tables of 4940
+# scenes are more, and `awk -v` failed with "Argument list too long").
 write_generated() {
-  local doc=$1 title=$2 text=$3 name=${4:+ $4} block
+  local doc=$1 title=$2 text=$3 name=${4:+ $4} blockfile
   local begin="<!-- BEGIN generated$name -->" end="<!-- END generated$name -->"
-  block=$(printf '%s\n%s\n%s' "$begin" "$text" "$end")
+  blockfile=$(mktemp)
+  printf '%s\n%s\n%s\n' "$begin" "$text" "$end" >"$blockfile"
   if [ -f "$doc" ] && grep -qF "$begin" "$doc"; then
-    awk -v block="$block" -v begin="$begin" -v end="$end" '
-      $0 == begin { print block; skip = 1; next }
+    if ! awk -v blockfile="$blockfile" -v begin="$begin" -v end="$end" '
+      $0 == begin { while ((getline line < blockfile) > 0) print line; skip = 1; next }
       $0 == end { skip = 0; next }
-      !skip { print }' "$doc" >"$doc.tmp" && mv "$doc.tmp" "$doc"
+      !skip { print }' "$doc" >"$doc.tmp"; then
+      rm -f "$blockfile" "$doc.tmp"
+      echo "write_generated: $doc not written" >&2
+      return 1
+    fi
+    mv "$doc.tmp" "$doc"
   elif [ -f "$doc" ]; then
-    printf '\n%s\n' "$block" >>"$doc"
+    { printf '\n'; cat "$blockfile"; } >>"$doc"
   else
-    printf '# %s\n\n%s\n' "$title" "$block" >"$doc"
+    { printf '# %s\n\n' "$title"; cat "$blockfile"; } >"$doc"
   fi
+  rm -f "$blockfile"
   echo "written: $doc" >&2
 }

@@ -403,6 +403,13 @@ SHAPE_PARTS = [
 # alone or in hands) of taupe (150,130,115: hue 26, saturation 0.23, value 0.59: a grey-brown
 # near the barks' colours: russeted and scurfy fruit, sapodillas, medlars in shade), each in a
 # quarter of the part's scenes; leafy exports, silver bark, colour noise and dense clouds kept.
+# 'held-out-47' (4941-5040, session 59, after held-out-46 was scored, before any method for it)
+# adds longan-like fruit (11 mm, round, in bunches of 6-12 touching 0.5 mm apart, 200 on a tree
+# of 2 m: large tight clusters of small round fruit, where such bunches so far were grapes and
+# currants) of mauve (175,130,160: hue 320, saturation 0.26, value 0.69: a greyish pink-purple on
+# the saturation line, between the pale-pink, lavender and dusky fruit so far: bloomed plums,
+# ripening figs, heather-coloured berries), each in a quarter of the part's scenes; leafy
+# exports, silver bark, colour noise and dense clouds kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -529,6 +536,10 @@ WOOD_PARTS = [
      {'tamarillo': (0.025, '--species plum --fruit-radius 0.025 --bunch-min 2 --bunch-max 5 '
                            '--touch-gap 0.001 --fruit-count 80 --canopy 1.0,1.0,0.8')},
      {'taupe': (150, 130, 115)}, set(), WITH_SILVER),
+    ('held-out-47', 2074,
+     {'longan': (0.011, '--species plum --fruit-radius 0.011 --bunch-min 6 --bunch-max 12 '
+                        '--touch-gap 0.0005 --fruit-count 200 --canopy 1.0,1.0,0.8')},
+     {'mauve': (175, 130, 160)}, set(), WITH_SILVER),
 ]
 
 
@@ -573,6 +584,7 @@ ASPECTS['persimmon'] = 0.8
 ASPECTS['caper'] = 1.3
 ASPECTS['sloe'] = 1.0
 ASPECTS['tamarillo'] = 1.5
+ASPECTS['longan'] = 1.0
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
