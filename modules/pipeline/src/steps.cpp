@@ -1195,12 +1195,11 @@ ChainResult by_shape(io::Blob in,
                            claimed[other] < kOtherClaims * claimed[best] &&
                            claimed[best] > (ruled ? beat + kClaimsMore : rule_claimed);
     if (ruled && !kept_best) {
-        // ... unless the pale points are claimed clearly more than the rule's group kept in
-        // doubt (mint fruit: a group of the saturated points claimed 54 %, the pale points 99 %).
-        if (ruled->claim < kDoubtfulRule) {
-            if (auto out = pale_fruit(beat + kClaimsMore)) {
-                return std::move(*out);
-            }
+        // ... unless the pale points are claimed clearly more than the rule's group kept (in
+        // doubt here: one claimed kDoubtfulRule returned above; mint fruit: a group of the
+        // saturated points claimed 54 %, the pale points 99 %).
+        if (auto out = pale_fruit(beat + kClaimsMore)) {
+            return std::move(*out);
         }
         return ruled_run();
     }
