@@ -44,10 +44,11 @@ BARK = {'grey-brown': (110, 100, 90), 'brown': (100, 75, 50), 'red-brown': (120,
 
 DENSE_R_OVER_S = [30, 45]                        # sampled modes, held-out-26 on ...
 DENSE_SPACING = 0.0008                           # ... down to a spacing of 0.8 mm (camera-bound)
+MIN_SPACING = 0.0004                             # every draw, held-out-48 on (see draw: floor)
 
 
 def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense=False,
-         barks=BARK, featured=None, leafy=False):
+         barks=BARK, featured=None, leafy=False, floor=False):
     """One line per id; part(family, colour, mode) names its split (it may draw from rng).
     wood: each scene gets a tree of 3-8 main branches (drawn after everything else, so that the
     parts without wood keep their scenes); lattice modes export a fifth of the branches (fruit
@@ -62,14 +63,18 @@ def draw(rng, families, colours, ids, part, wood=False, color_noise=False, dense
     featured: (families, colours) new in this part, each drawn for a quarter of its scenes (drawn
     uniformly, a new family of 40 came up in 2 of 100 scenes, a new colour in none).
     leafy: a quarter of the scenes export 40 % of the leaves, not 10 % (a loosely masked or
-    whole-canopy export: leaf points outnumber the fruit's); drawn from the scene's own seed."""
+    whole-canopy export: leaf points outnumber the fruit's); drawn from the scene's own seed.
+    floor: the spacings a radius drawn keep the spacing >= MIN_SPACING (0.4 mm: a whole tree is
+    not sampled finer than the best real exports, SfM apples at 0.46 mm; 5 mm fruit at 20
+    spacings a radius put 12-30M points on a tree of 1.6 m, 0.25 mm apart)."""
     for i in ids:
         if featured and rng.random() < 0.25:
             family = rng.choice(sorted(featured[0]))
         else:
             family = rng.choice(list(families))
         mode = rng.choice(MODES)
-        rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)])
+        rs = rng.choice([x for x in R_OVER_S if x <= (8 if mode in SOLID else 12 if mode == 'implicit' else 20)
+                         and (not floor or families[family][0] / x >= MIN_SPACING)])
         noise = rng.choice(NOISE) if mode in SAMPLED else 0
         if featured and rng.random() < 0.25:
             colour = rng.choice(sorted(featured[1]))
@@ -410,6 +415,13 @@ SHAPE_PARTS = [
 # the saturation line, between the pale-pink, lavender and dusky fruit so far: bloomed plums,
 # ripening figs, heather-coloured berries), each in a quarter of the part's scenes; leafy
 # exports, silver bark, colour noise and dense clouds kept.
+# 'held-out-48' (5041-5140, session 60, after held-out-47 was scored, before any method for it)
+# adds rowan-like fruit (5 mm, round, in bunches of 8-16 touching 0.3 mm apart, 240 on a shrub of
+# 1 m: umbels of tiny berries, smaller and in larger bunches than any so far) of copper
+# (185,95,55: hue 18, saturation 0.70, value 0.73: an orange-brown between the tangerine and
+# russet fruit and the barks' hues: rowan and sea-buckthorn berries, copper beech nuts), each in
+# a quarter of the part's scenes; leafy exports, silver bark, colour noise and dense clouds kept;
+# from this part on no scene's spacing is under 0.4 mm (MIN_SPACING).
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -540,6 +552,10 @@ WOOD_PARTS = [
      {'longan': (0.011, '--species plum --fruit-radius 0.011 --bunch-min 6 --bunch-max 12 '
                         '--touch-gap 0.0005 --fruit-count 200 --canopy 1.0,1.0,0.8')},
      {'mauve': (175, 130, 160)}, set(), WITH_SILVER),
+    ('held-out-48', 2075,
+     {'rowan': (0.005, '--species plum --fruit-radius 0.005 --bunch-min 8 --bunch-max 16 '
+                       '--touch-gap 0.0003 --fruit-count 240 --canopy 0.5,0.5,0.4')},
+     {'copper': (185, 95, 55)}, set(), WITH_SILVER),
 ]
 
 
@@ -554,6 +570,7 @@ COLOUR_NOISE_PARTS = from_part('held-out-25')
 DENSE_PARTS = from_part('held-out-26')
 FEATURED_PARTS = from_part('held-out-32')
 LEAFY_PARTS = from_part('held-out-38')
+FLOOR_PARTS = from_part('held-out-48')
 ASPECTS['quince'] = 1.2
 ASPECTS['pomegranate'] = 0.9
 ASPECTS['loquat'] = 1.3
@@ -585,6 +602,7 @@ ASPECTS['caper'] = 1.3
 ASPECTS['sloe'] = 1.0
 ASPECTS['tamarillo'] = 1.5
 ASPECTS['longan'] = 1.0
+ASPECTS['rowan'] = 1.0
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
@@ -597,7 +615,7 @@ for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOO
                   color_noise=part in COLOUR_NOISE_PARTS, dense=part in DENSE_PARTS,
                   barks=barks[0] if barks else BARK,
                   featured=(new_families, new_colours) if part in FEATURED_PARTS else None,
-                  leafy=part in LEAFY_PARTS)
+                  leafy=part in LEAFY_PARTS, floor=part in FLOOR_PARTS)
     first += 100
 
 out = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'scenes.txt')
