@@ -1006,17 +1006,21 @@ ChainResult by_shape(io::Blob in,
         ChainResult run;
         std::string rule;
     };
+    // Every saturated point, whatever its hue (the green points' rule without its hue band): both
+    // colour sides of a fruit; none where the colours offer no green points.
     std::optional<filters::ColorFilterParams> saturated;
+    if (c.greens) {
+        saturated = c.greens->rule;
+        saturated->hue_deg.reset();
+    }
     const auto both_sides = [&](const ChainResult& run, const io::Blob& other, const Indices* which,
                                 const io::Blob* one, const io::Blob* two, const std::string& reason,
                                 const std::string& compared) -> std::optional<Sides> {
         const double r = step_value(run, "recursive_split", "fruit_radius").value_or(0);
         const double near = share_near_parts(other, which, run.labelled, r);
-        if (!c.greens || near < kOwnGreens) {
+        if (!saturated || near < kOwnGreens) {
             return std::nullopt;
         }
-        saturated = c.greens->rule;
-        saturated->hue_deg.reset();
         io::Blob joined;
         if (one == nullptr) {
             joined = io::copy_points(in, colour_kept(in, *saturated));
@@ -1047,24 +1051,21 @@ ChainResult by_shape(io::Blob in,
     // clearly. Not where the classes were judged on a share of the points (the near points are
     // those of the share).
     const auto other_side = [&](const Kept& k) -> std::optional<Sides> {
-        if (!c.greens || all || k.claim < kDoubtfulRule) {
+        if (!saturated || all || k.claim < kDoubtfulRule) {
             return std::nullopt;
         }
         const double r = step_value(k.run, "recursive_split", "fruit_radius").value_or(0);
-        filters::ColorFilterParams any = c.greens->rule;
-        any.hue_deg.reset();
-        const Indices near = near_parts(in, colour_kept(in, any), k.run.labelled, r);
+        const Indices near = near_parts(in, colour_kept(in, *saturated), k.run.labelled, r);
         const auto had = static_cast<double>(k.run.steps.front().points_out);
         if (static_cast<double>(near.size()) < (1 + kOtherSideAdds) * had) {
             return std::nullopt;
         }
         ChainResult both =
-            chain_after(colour_step(io::copy_points(in, near), points_in, any), rest, {});
+            chain_after(colour_step(io::copy_points(in, near), points_in, *saturated), rest, {});
         const double g = claims(both);
         if (g < kDoubtfulRule) {
             return std::nullopt;
         }
-        saturated = any;
         return Sides{std::move(both), k.rule + kOtherSideNote + share(near.size() / had - 1) +
                                           " more points; its fruit centres claim " + share(g) +
                                           " of them)"};
