@@ -203,6 +203,29 @@ TEST(SphereVote, FruitOfTwoSpacingsARadiusAreFoundWithTheirRadius) {
     }
 }
 
+TEST(SphereVote, OnALatticeLeftoversArePartedWhereTheLatticeIsParted) {
+    // Partial masks at 2 spacings a radius: two pieces of a bunch's fruit (2 x 2 x 5 steps: too
+    // small for a centre of their own, not a sheet together) lie beyond reach of every centre,
+    // 2.8 steps apart: DBSCAN's eps of 4 steps made them one cluster with the bunch, and they were
+    // one part (8 counted). The lattice parts them (kLatticeLink): two parts of their own.
+    Scene s = solid(2.3);
+    for (std::uint32_t a = 0; a < 2; ++a) {
+        for (int i = 0; i < 2; ++i) {
+            for (int j = 0; j < 2; ++j) {
+                for (int k = 0; k < 5; ++k) {
+                    s.add(a == 0 ? Eigen::Vector3d(13.5 + i, 13.5 + j, -13.5 + k)
+                                 : Eigen::Vector3d(16.5 + k, 16.5 + j, -13.5 + i),
+                          8 + a, 4);
+                }
+            }
+        }
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {});
+    EXPECT_EQ(r.peaks, 7u);
+    EXPECT_EQ(r.cluster_count, 9u);
+    EXPECT_EQ(misassigned(r.labels, s.truth), 0);
+}
+
 TEST(SphereVote, ATreeOfManyFruitIsNotThinnedBelowItsResolution) {
     // The points that vote are a strided sample of at most max_samples; a tree of many fruit
     // thinned that far keeps too few a fruit (here 200 of ~6300 points: under 2 spacings a

@@ -152,6 +152,10 @@ struct SphereVoteResult {
 ///     apart also ringing the line between them: join_far, join_ring), and two centres whose
 ///     votes fill the line between them (long fruit: join_line, join_line_far), where R spans
 ///     join_resolution spacings, and coarser where such pairs are many (coarse_joins).
+///  6. On a voxel lattice (the nearest-neighbour distances all one step) where R spans under 2.5
+///     steps, the leftovers of step 4 are parted into the pieces the lattice connects (face and
+///     edge neighbours): there DBSCAN's eps spans a fruit and joined the caps of a bunch's fruit
+///     that no peak took. Random samplings keep their clusters.
 /// Label 0 stays noise; non-finite points become noise. Deterministic.
 [[nodiscard]] SphereVoteResult sphere_vote(const XyzView& points,
                                            std::vector<std::uint32_t> labels,
