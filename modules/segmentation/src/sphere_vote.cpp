@@ -1148,10 +1148,11 @@ constexpr double kLatticeCoarse = 2.5;
 /// them lost slightly (docs/robustness-history.md, session 61). On random samplings, whose
 /// spacing varies from point to point (SfM density gradients, scan stripes), no fixed link keeps
 /// one fruit's leftover whole (parting them at 1.5 spacings, or at 1.05 x each point's sixth
-/// neighbour, lost more than it won), and the clusters stay as DBSCAN made them. The lattice is
-/// tested (a grid of every clustered point) only where R spans under kLatticeCoarse of the
-/// leftovers' own spacing, as it then must of the step; the leftovers' own distances do not tell
-/// a lattice (their lone points: 2827, 119 -> 94 of 171). In place.
+/// neighbour, lost more than it won), and the clusters stay as DBSCAN made them. Every clustered
+/// point is tested (a grid of them all: 4 s on 3.6M points) only where the leftovers' own
+/// distances allow a lattice (none under their median, the step, and R under kLatticeCoarse of
+/// it); those alone do not tell one (their lone points lie farther: 2827, 119 -> 94 of 171). In
+/// place.
 void part_leftovers_on_lattice(const XyzView& points,
                                const std::vector<std::uint32_t>& members,
                                std::vector<std::uint32_t>& labels,
@@ -1169,8 +1170,9 @@ void part_leftovers_on_lattice(const XyzView& points,
         return;
     }
     const XyzView view = points.subset(left);
-    if (!(R < kLatticeCoarse * search::median_spacing(view))) {
-        return;  // R spans 2.5 steps or more: the test over every clustered point is not needed
+    const search::SpacingStats own = search::spacing_stats(view);
+    if (!(R < kLatticeCoarse * own.median && own.p10 >= (1 - kLatticeTolerance) * own.median)) {
+        return;  // no lattice, or R spans kLatticeCoarse steps or more: no test over every point
     }
     const search::SpacingStats st = search::spacing_stats(points.subset(members));
     if (!(st.median > 0 && R < kLatticeCoarse * st.median &&
