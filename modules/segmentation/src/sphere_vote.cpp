@@ -1157,7 +1157,11 @@ void part_leftovers_on_lattice(const XyzView& points,
                                const std::vector<std::uint32_t>& members,
                                std::vector<std::uint32_t>& labels,
                                std::uint32_t fruit,
-                               double R) {
+                               double R,
+                               double ss) {
+    if (!(R < kLatticeCoarse * ss)) {
+        return;  // the voting sample's spacing ss is no less than the step
+    }
     std::vector<std::uint32_t> left;
     std::uint32_t top = 0;
     for (const std::uint32_t i : members) {
@@ -1743,7 +1747,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
             }
         }
     }
-    part_leftovers_on_lattice(points, members, labels, static_cast<std::uint32_t>(peaks.size()), R);
+    part_leftovers_on_lattice(points, members, labels, static_cast<std::uint32_t>(peaks.size()), R,
+                              ss);
     r.peaks = static_cast<std::uint32_t>(peaks.size()) - joined;
     return done();
 }
