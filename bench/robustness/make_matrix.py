@@ -422,6 +422,13 @@ SHAPE_PARTS = [
 # russet fruit and the barks' hues: rowan and sea-buckthorn berries, copper beech nuts), each in
 # a quarter of the part's scenes; leafy exports, silver bark, colour noise and dense clouds kept;
 # from this part on no scene's spacing is under 0.4 mm (MIN_SPACING).
+# 'held-out-49' (5141-5240, session 61, after held-out-48 was scored, before any method for it)
+# adds acerola-like fruit (8 mm, oblate, aspect 0.85, single or up to three touching 0.5 mm apart,
+# 200 on a shrub of 1.6 m: small flattened fruit, where the oblate ones so far were 25-45 mm) of
+# wine (125,35,70: hue 337, saturation 0.72, value 0.49: a dark purplish red between the
+# dark-red, dusky and magenta fruit: acerolas, cornelian and sour cherries in shade), each in a
+# quarter of the part's scenes; leafy exports, silver bark, colour noise, dense clouds and the
+# spacing floor kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -556,6 +563,10 @@ WOOD_PARTS = [
      {'rowan': (0.005, '--species plum --fruit-radius 0.005 --bunch-min 8 --bunch-max 16 '
                        '--touch-gap 0.0003 --fruit-count 240 --canopy 0.5,0.5,0.4')},
      {'copper': (185, 95, 55)}, set(), WITH_SILVER),
+    ('held-out-49', 2076,
+     {'acerola': (0.008, '--species plum --fruit-radius 0.008 --bunch-min 1 --bunch-max 3 '
+                         '--touch-gap 0.0005 --fruit-count 200 --canopy 0.8,0.8,0.7')},
+     {'wine': (125, 35, 70)}, set(), WITH_SILVER),
 ]
 
 
@@ -603,6 +614,7 @@ ASPECTS['sloe'] = 1.0
 ASPECTS['tamarillo'] = 1.5
 ASPECTS['longan'] = 1.0
 ASPECTS['rowan'] = 1.0
+ASPECTS['acerola'] = 0.85
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)

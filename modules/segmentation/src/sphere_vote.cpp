@@ -1132,7 +1132,8 @@ double parts(const std::vector<std::uint32_t>& labels, const std::vector<std::ui
 }
 
 /// The sampled nearest-neighbour distances of a voxel lattice all lie within this share of their
-/// median (the step): the 10th and 90th percentiles (random samplings: about 0.5 and 1.3 of it).
+/// median (the step): the 10th and 90th percentiles (a Poisson sampling's: about 0.5 and 1.5 of
+/// it in a volume, 0.4 and 1.8 on a surface).
 constexpr double kLatticeTolerance = 0.02;
 /// Lattice points this many steps apart or closer are adjacent: face and edge neighbours (1, 1.41).
 constexpr double kLatticeLink = 1.5;
@@ -1149,10 +1150,10 @@ constexpr double kLatticeCoarse = 2.5;
 /// spacing varies from point to point (SfM density gradients, scan stripes), no fixed link keeps
 /// one fruit's leftover whole (parting them at 1.5 spacings, or at 1.05 x each point's sixth
 /// neighbour, lost more than it won), and the clusters stay as DBSCAN made them. Every clustered
-/// point is tested (a grid of them all: 4 s on 3.6M points) only where the leftovers' own
-/// distances allow a lattice (none under their median, the step, and R under kLatticeCoarse of
-/// it); those alone do not tell one (their lone points lie farther: 2827, 119 -> 94 of 171). In
-/// place.
+/// point is tested (a grid and a sort of them all) only where the voting sample's spacing `ss`
+/// (no less than the step) and then the leftovers' own distances allow a lattice (none under
+/// their median, and R under kLatticeCoarse of it); those alone do not tell one (their lone
+/// points lie farther: 2827, 119 -> 94 of 171). In place.
 void part_leftovers_on_lattice(const XyzView& points,
                                const std::vector<std::uint32_t>& members,
                                std::vector<std::uint32_t>& labels,
