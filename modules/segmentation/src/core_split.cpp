@@ -33,14 +33,6 @@ constexpr std::uint32_t kRoot = 0x80000000u;
 constexpr std::uint32_t kNumbered = 0x40000000u;
 constexpr std::uint32_t kValue = kNumbered - 1;
 
-std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
-    while (parent[x] != x) {
-        parent[x] = parent[parent[x]];
-        x = parent[x];
-    }
-    return x;
-}
-
 /// The points' cluster ids: a 4-byte word in each of their records (read where it is, it moves
 /// with its record).
 struct LabelWords {
@@ -251,7 +243,7 @@ void merge_hollow_fragments(const XyzView& pts,
             const double d2 = (x[0] - y[0]) * (x[0] - y[0]) + (x[1] - y[1]) * (x[1] - y[1]) +
                               (x[2] - y[2]) * (x[2] - y[2]);
             if (d2 < reach * reach) {
-                const auto ra = find(parent, order[a]), rb = find(parent, order[b]);
+                const auto ra = find_root(parent, order[a]), rb = find_root(parent, order[b]);
                 if (ra != rb) {
                     parent[std::max(ra, rb)] = std::min(ra, rb);
                     ++merged;
@@ -260,7 +252,7 @@ void merge_hollow_fragments(const XyzView& pts,
         }
     }
     for (auto& l : labels) {
-        l = l == 0 ? 0 : find(parent, l);
+        l = l == 0 ? 0 : find_root(parent, l);
     }
 }
 
@@ -313,7 +305,7 @@ void merge_solid_fragments(const XyzView& pts,
     std::vector<std::uint32_t> parent(members.size());
     std::iota(parent.begin(), parent.end(), 0u);
     for (const auto& [d, a0, b0] : pairs) {
-        const auto a = find(parent, a0), b = find(parent, b0);
+        const auto a = find_root(parent, a0), b = find_root(parent, b0);
         if (a == b) {
             continue;
         }
@@ -337,7 +329,7 @@ void merge_solid_fragments(const XyzView& pts,
         }
     }
     for (auto& l : labels) {
-        l = l == 0 ? 0 : find(parent, l);
+        l = l == 0 ? 0 : find_root(parent, l);
     }
 }
 
@@ -608,8 +600,8 @@ std::vector<std::uint32_t> split_clustered(XyzRecords& recs,
                 };
                 grid.for_each_within_if(
                     point_at(k), link, later_core, [&](std::uint32_t j, double) {
-                        const auto a = find(parent, static_cast<std::uint32_t>(k)),
-                                   b = find(parent, j);
+                        const auto a = find_root(parent, static_cast<std::uint32_t>(k)),
+                                   b = find_root(parent, j);
                         parent[std::max(a, b)] = std::min(a, b);
                     });
             }

@@ -1189,25 +1189,19 @@ void part_leftovers_on_lattice(const XyzView& points,
     const search::Grid grid(view, link);
     std::vector<std::uint32_t> parent(left.size());
     std::iota(parent.begin(), parent.end(), 0U);
-    const auto root = [&](std::uint32_t x) {
-        while (parent[x] != x) {
-            parent[x] = parent[parent[x]];
-            x = parent[x];
-        }
-        return x;
-    };
     for (std::uint32_t a = 0; a < left.size(); ++a) {
         grid.for_each_within(view[a], link, [&](std::uint32_t b, double) {
             if (labels[left[b]] == labels[left[a]]) {
-                parent[root(a)] = root(b);
+                parent[find_root(parent, a)] = find_root(parent, b);
             }
         });
     }
     std::unordered_map<std::uint32_t, std::uint32_t> piece;  // a root's label: top + 1, 2, ...
     for (std::uint32_t a = 0; a < left.size(); ++a) {
-        const auto [at, added] =
-            piece.try_emplace(root(a), top + 1 + static_cast<std::uint32_t>(piece.size()));
-        labels[left[a]] = at->second;
+        labels[left[a]] = piece
+                              .try_emplace(find_root(parent, a),
+                                           top + 1 + static_cast<std::uint32_t>(piece.size()))
+                              .first->second;
     }
 }
 
