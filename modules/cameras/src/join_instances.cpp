@@ -31,12 +31,7 @@ public:
         }
     }
 
-    std::uint32_t root(std::uint32_t n) {
-        while (parent_[n] != n) {
-            n = parent_[n] = parent_[parent_[n]];
-        }
-        return n;
-    }
+    std::uint32_t root(std::uint32_t n) { return find_root(parent_, n); }
 
     /// Joins the groups of a and b unless they hold an instance of the same view; true if
     /// they are one group afterwards.

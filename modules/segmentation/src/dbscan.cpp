@@ -93,12 +93,7 @@ void local_components(const search::Grid& grid,
                       std::uint8_t& count) {
     thread_local std::vector<std::uint32_t> up;
     up.resize(e - b);
-    const auto root = [&](std::uint32_t x) {
-        while (up[x] != x) {
-            x = up[x] = up[up[x]];
-        }
-        return x;
-    };
+    const auto root = [&](std::uint32_t x) { return find_root(up, x); };
     const float* xyz = grid.point(b);  // the cell's points, one stride apart
     const std::size_t stride = grid.point_stride();
     std::uint32_t groups = 0;  // components among the core points seen so far

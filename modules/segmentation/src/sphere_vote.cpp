@@ -1088,12 +1088,7 @@ std::uint32_t join_elongated(const XyzView& points,
     };
     std::vector<std::uint32_t> root(top);
     std::iota(root.begin(), root.end(), 0u);
-    const auto find = [&](std::uint32_t a) {
-        while (root[a] != a) {
-            a = root[a] = root[root[a]];
-        }
-        return a;
-    };
+    const auto find = [&](std::uint32_t a) { return find_root(root, a); };
     std::uint32_t merged = 0;
     for (std::uint32_t j = 0; j < count; ++j) {
         for (std::uint32_t k = j + 1; k < top; ++k) {
