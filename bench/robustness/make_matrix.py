@@ -429,6 +429,13 @@ SHAPE_PARTS = [
 # dark-red, dusky and magenta fruit: acerolas, cornelian and sour cherries in shade), each in a
 # quarter of the part's scenes; leafy exports, silver bark, colour noise, dense clouds and the
 # spacing floor kept.
+# 'held-out-50' (5241-5340, session 62, after held-out-49 was scored, before any method for it)
+# adds elderberry-like fruit (3.5 mm, round, in bunches of 10-20 touching 0.2 mm apart, 300 on a
+# shrub of 1.2 m: the smallest fruit so far, in flat umbels as the rowans were) of sky
+# (120,170,210: hue 207, saturation 0.43, value 0.82: a light blue, lighter and more saturated
+# than the glaucous and grey-blue fruit: bloomed haskap, juniper and blue elderberries in the
+# light), each in a quarter of the part's scenes; leafy exports, silver bark, colour noise, dense
+# clouds and the spacing floor kept (the fruit then spans at most 8 spacings a radius).
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -567,6 +574,10 @@ WOOD_PARTS = [
      {'acerola': (0.008, '--species plum --fruit-radius 0.008 --bunch-min 1 --bunch-max 3 '
                          '--touch-gap 0.0005 --fruit-count 200 --canopy 0.8,0.8,0.7')},
      {'wine': (125, 35, 70)}, set(), WITH_SILVER),
+    ('held-out-50', 2077,
+     {'elderberry': (0.0035, '--species plum --fruit-radius 0.0035 --bunch-min 10 --bunch-max 20 '
+                             '--touch-gap 0.0002 --fruit-count 300 --canopy 0.6,0.6,0.5')},
+     {'sky': (120, 170, 210)}, set(), WITH_SILVER),
 ]
 
 
@@ -615,6 +626,7 @@ ASPECTS['tamarillo'] = 1.5
 ASPECTS['longan'] = 1.0
 ASPECTS['rowan'] = 1.0
 ASPECTS['acerola'] = 0.85
+ASPECTS['elderberry'] = 1.0
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
