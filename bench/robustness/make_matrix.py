@@ -436,6 +436,13 @@ SHAPE_PARTS = [
 # than the glaucous and grey-blue fruit: bloomed haskap, juniper and blue elderberries in the
 # light), each in a quarter of the part's scenes; leafy exports, silver bark, colour noise, dense
 # clouds and the spacing floor kept (the fruit then spans at most 8 spacings a radius).
+# 'held-out-51' (5341-5440, session 63, after held-out-50 was scored, before any method for it)
+# adds okra-like fruit (8 mm for a sphere of the same volume, aspect 3.6: long and thin, 4.6 mm
+# thick and 38 mm long, in bunches of 3-6 touching 0.5 mm apart, 120 on a plant of 1 m: the
+# long fruit so far were 12-45 mm and at most aspect 3.5) of turquoise (65,190,175: hue 173,
+# saturation 0.66, value 0.75: a blue-green beyond the teal and jade fruit, as porcelain berries
+# and unripe blue fruit are), each in a quarter of the part's scenes; leafy exports, silver bark,
+# colour noise, dense clouds and the spacing floor kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -578,6 +585,10 @@ WOOD_PARTS = [
      {'elderberry': (0.0035, '--species plum --fruit-radius 0.0035 --bunch-min 10 --bunch-max 20 '
                              '--touch-gap 0.0002 --fruit-count 300 --canopy 0.6,0.6,0.5')},
      {'sky': (120, 170, 210)}, set(), WITH_SILVER),
+    ('held-out-51', 2078,
+     {'okra': (0.008, '--species plum --fruit-radius 0.008 --bunch-min 3 --bunch-max 6 '
+                      '--touch-gap 0.0005 --fruit-count 120 --canopy 0.6,0.6,0.8')},
+     {'turquoise': (65, 190, 175)}, set(), WITH_SILVER),
 ]
 
 
@@ -627,6 +638,7 @@ ASPECTS['longan'] = 1.0
 ASPECTS['rowan'] = 1.0
 ASPECTS['acerola'] = 0.85
 ASPECTS['elderberry'] = 1.0
+ASPECTS['okra'] = 3.6
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)

@@ -458,6 +458,46 @@ TEST(SphereVote, ResolvedLongFruitAreJoinedByTheirLineFromOneRadiusApart) {
     EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, line_alone).cluster_count, fruit + 12);
 }
 
+TEST(SphereVote, CucumberLongFruitAreJoinedEndToEndRowsOfSpheresAreNot) {
+    // Cucumber-like fruit (aspect 3.5-3.9, 5 spacings thick): the centres found are the two
+    // ends' (about 2 (aspect - 1) R apart, 5-5.8 R) and the middle's points a leftover that
+    // joins one end only; the votes fill the line between the ends. Rows of five touching
+    // spheres (2.1 R apart, so the outer ones 4.2-8.4 R) leave the stretches between the vote
+    // balls empty and count five.
+    Scene s;
+    const double e = 5;
+    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
+                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
+    std::uint32_t id = 1;
+    for (const double aspect : {3.5, 3.9}) {
+        for (const auto& axis : axes) {
+            add_spheroid(s, Eigen::Vector3d(-30 * e * id, 0, 0), e * std::cbrt(aspect), aspect,
+                         axis, id);
+            ++id;
+        }
+    }
+    for (int row = 0; row < 2; ++row) {
+        std::vector<Ball> balls;
+        for (int b = 0; b < 5; ++b) {
+            balls.push_back({Eigen::Vector3d(30 * e * row, 50 * e, 0) +
+                                 2.1 * e * b * axes[row + 1].normalized(),
+                             e});
+        }
+        add_shells(s, balls, id, id);
+        id += 5;
+    }
+    const std::uint32_t fruit = id - 1;  // 12 + 10
+    SphereVoteParams params{.min_relative_size = 0.1};
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, params);
+    EXPECT_EQ(r.cluster_count, fruit);
+    const long wrong = misassigned(r.labels, s.truth);
+    ASSERT_GE(wrong, 0);
+    EXPECT_LT(wrong, static_cast<long>(s.cloud.size() / 50));
+    // The line read only to 4 R (banana-like fruit's ends): most cucumbers count twice.
+    params.join_line_far = 4;
+    EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, params).cluster_count, fruit + 6);
+}
+
 /// Lattice points (spacing 1) inside solid banana-like fruit (aspect 2.8, equatorial radius
 /// `e`, axis `axis`) centred at `centres`, ids from `first_id`, all in one DBSCAN cluster; a
 /// point inside two goes to the one it lies deeper in.

@@ -94,9 +94,12 @@ struct SphereVoteParams {
     /// 0.462 -> 0.511, the 35 eggplant-like 0.725 -> 0.771, the rest of the matrix ±0. Its votes
     /// are cast again from the fit's voters (their normals kept: 2-3 % of the time and +1 % of
     /// the peak memory on the bench canopies, where fitting the normals again cost 10-15 %)
-    /// (docs/robustness-history.md, sessions 49 and 51)
+    /// (docs/robustness-history.md, sessions 49 and 51). Up to join_line_far × R: a spheroid of
+    /// aspect a gives its two ends' centres about 2 (a - 1) R apart, 5-6 R for cucumber-like
+    /// fruit (a 3.5-4), whose middle's points are a leftover that joins one end only (4 R, the
+    /// bananas' reach, left most of them in two: session 63)
     double join_line = 0.3;
-    double join_line_far = 4;
+    double join_line_far = 6;
     std::uint32_t min_cluster_size = 0;  ///< final clusters with fewer points become noise
     /// ... and those with fewer than this × the median final size: the median fruit's where
     /// the centres claimed most points, leftovers also under a quarter of it (pieces cut off a
