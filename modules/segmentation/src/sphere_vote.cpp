@@ -1003,15 +1003,15 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> line_pairs(const std::vecto
 /// line in the ratio of their radii; halfway for a leftover) is at least `convex` × the width
 /// interpolated between the widths at the two centres (a convex profile lies above its chords);
 /// two touching spheres narrow there to a waist (about half). A width is the median distance
-/// from the line of the points in a slab ±0.1 R across it, within 1.3 × the larger radius (a
-/// neighbour's points given to one of the two do not widen it); a slab of fewer than 3 points
-/// says nothing. Centres are tried within `join_far` × R of each other, leftovers within 2.5 R
-/// of a centre; centres beyond `join_near` × R also need the points at the join (±0.25 R: a
-/// slab of ±0.1 R held 5-10 points of a pod at 8 spacings, too few for its shape) to ring the
-/// line: their offsets from it, p, have a second moment sum(p pᵀ) whose smaller eigenvalue
-/// across the line is at least `join_ring` × the larger (a pod's cross-section is round, 1; two
-/// fruit side by side meet in a band, or one's cap cut across its length: about 1/aspect²). Labels
-/// are merged in place (into the fruit's); returns the fruit centres merged into another.
+/// from the line of the points in a slab ±0.1 R across it (at least ±join_slab sample spacings
+/// `ss`), within 1.3 × the larger radius (a neighbour's points given to one of the two do not widen
+/// it); a slab of fewer than 3 points says nothing. Centres are tried within `join_far` × R of each
+/// other, leftovers within 2.5 R of a centre; centres beyond `join_near` × R also need the points
+/// at the join (±0.25 R: a slab of ±0.1 R held 5-10 points of a pod at 8 spacings, too few for its
+/// shape) to ring the line: their offsets from it, p, have a second moment sum(p pᵀ) whose smaller
+/// eigenvalue across the line is at least `join_ring` × the larger (a pod's cross-section is round,
+/// 1; two fruit side by side meet in a band, or one's cap cut across its length: about 1/aspect²).
+/// Labels are merged in place (into the fruit's); returns the fruit centres merged into another.
 /// Long fruit (bananas, aspect near 3) are cut into three or four parts along their axis, whose
 /// middles are beyond reach of the centres at either end, so their points say little: two centres
 /// kLineNear to join_line_far × R apart are also one fruit where the votes between them fill the
@@ -1022,6 +1022,7 @@ std::uint32_t join_elongated(const XyzView& points,
                              const std::vector<Peak>& peaks,
                              const std::vector<std::pair<std::uint32_t, std::uint32_t>>& lines,
                              double R,
+                             double ss,
                              const SphereVoteParams& params) {
     const auto count = static_cast<std::uint32_t>(peaks.size());
     std::uint32_t top = count;
@@ -1047,6 +1048,7 @@ std::uint32_t join_elongated(const XyzView& points,
             centre[l] /= static_cast<double>(of[l].size());
         }
     }
+    const double slab = std::max(0.1 * R, params.join_slab * ss);  // one spacing thick at least
     const auto one_body = [&](std::uint32_t j, std::uint32_t k, bool ring) {
         const V3 axis = centre[k] - centre[j];
         const double d = axis.norm();
@@ -1064,7 +1066,7 @@ std::uint32_t join_elongated(const XyzView& points,
                 const V3 p = q - t * u;
                 const double rho = p.norm();
                 for (int w = 0; w < 3; ++w) {
-                    if (std::abs(t - at[w]) <= 0.1 * R && rho <= within) {
+                    if (std::abs(t - at[w]) <= slab && rho <= within) {
                         across[w].push_back(rho);
                     }
                 }
@@ -1331,10 +1333,11 @@ void SphereVoteParams::validate() const {
         !(join_line_far >= 0 && std::isfinite(join_line_far)) ||
         !(join_convex > 0 && join_convex <= 2) ||
         !(join_resolution >= 0 && std::isfinite(join_resolution)) ||
+        !(join_slab >= 0 && std::isfinite(join_slab)) ||
         !(coarse_joins >= 0 && std::isfinite(coarse_joins))) {
         throw InvalidArgument(
-            "sphere_vote: join_near, join_far, join_line, join_line_far, join_resolution and "
-            "coarse_joins must be >= 0, "
+            "sphere_vote: join_near, join_far, join_line, join_line_far, join_resolution, "
+            "join_slab and coarse_joins must be >= 0, "
             "join_ring in [0, 1], join_convex in (0, 2]");
     }
     if (!(min_resolution >= 0 && std::isfinite(min_resolution))) {
@@ -1721,11 +1724,11 @@ SphereVoteResult sphere_vote(const XyzView& points,
             voters = Voters{};
         }
         if (R >= params.join_resolution * ss) {
-            joined = join_elongated(points, members, labels, peaks, lines, R, params);
+            joined = join_elongated(points, members, labels, peaks, lines, R, ss, params);
         } else {
             std::vector<std::uint32_t> trial = labels, counted = labels;
             const std::uint32_t joins =
-                join_elongated(points, members, trial, peaks, lines, R, params);
+                join_elongated(points, members, trial, peaks, lines, R, ss, params);
             const double fewer = parts(labels, members) - parts(trial, members);
             const std::uint32_t count =
                 finish(counted, params.min_cluster_size, params.min_relative_size,

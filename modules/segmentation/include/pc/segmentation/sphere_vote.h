@@ -80,6 +80,11 @@ struct SphereVoteParams {
     double join_far = 2.6;
     double join_ring = 0.5;
     double join_convex = 0.9;
+    /// ... the profile's slabs (±0.1 R) at least ±join_slab × the voting sample's spacing: where
+    /// R spans under 5 spacings ±0.1 R is under one spacing thick, and most slabs of a coarse
+    /// long fruit's parts held under 3 points (4321, cucumber-like at 1.8 spacings: 73 of the 98
+    /// pairs the profile tried; session 63)
+    double join_slab = 0.5;
     double join_resolution = 6;
     double coarse_joins = 0.2;
     /// Long fruit (bananas, aspect near 3: three or four centres along the axis, the middles
