@@ -458,6 +458,36 @@ TEST(SphereVote, ResolvedLongFruitAreJoinedByTheirLineFromOneRadiusApart) {
     EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, line_alone).cluster_count, fruit + 12);
 }
 
+/// Long fruit of equatorial radius `e`, one for each of `copies` tilts (0.1 apart), `aspects`
+/// and six axes, apart; then two rows of `row` touching spheres of radius `e` (2.1 e apart).
+/// Returns the number of fruit.
+std::uint32_t add_cucumbers_and_rows(
+    Scene& s, double e, const std::vector<double>& aspects, int copies, int row) {
+    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
+                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
+    std::uint32_t id = 1;
+    for (int copy = 0; copy < copies; ++copy) {
+        for (const double aspect : aspects) {
+            for (const auto& axis : axes) {
+                add_spheroid(s, Eigen::Vector3d(-30 * e * id, 0, 0), e * std::cbrt(aspect), aspect,
+                             axis + Eigen::Vector3d(0.1 * copy, 0, 0), id);
+                ++id;
+            }
+        }
+    }
+    for (int r = 0; r < 2; ++r) {
+        std::vector<Ball> balls;
+        for (int b = 0; b < row; ++b) {
+            balls.push_back(
+                {Eigen::Vector3d(30 * e * r, 50 * e, 0) + 2.1 * e * b * axes[r + 1].normalized(),
+                 e});
+        }
+        add_shells(s, balls, id, id);
+        id += static_cast<std::uint32_t>(row);
+    }
+    return id - 1;
+}
+
 TEST(SphereVote, CucumberLongFruitAreJoinedEndToEndRowsOfSpheresAreNot) {
     // Cucumber-like fruit (aspect 3.5-3.9, 5 spacings thick): the centres found are the two
     // ends' (about 2 (aspect - 1) R apart, 5-5.8 R) and the middle's points a leftover that
@@ -465,28 +495,7 @@ TEST(SphereVote, CucumberLongFruitAreJoinedEndToEndRowsOfSpheresAreNot) {
     // spheres (2.1 R apart, so the outer ones 4.2-8.4 R) leave the stretches between the vote
     // balls empty and count five.
     Scene s;
-    const double e = 5;
-    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
-                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
-    std::uint32_t id = 1;
-    for (const double aspect : {3.5, 3.9}) {
-        for (const auto& axis : axes) {
-            add_spheroid(s, Eigen::Vector3d(-30 * e * id, 0, 0), e * std::cbrt(aspect), aspect,
-                         axis, id);
-            ++id;
-        }
-    }
-    for (int row = 0; row < 2; ++row) {
-        std::vector<Ball> balls;
-        for (int b = 0; b < 5; ++b) {
-            balls.push_back({Eigen::Vector3d(30 * e * row, 50 * e, 0) +
-                                 2.1 * e * b * axes[row + 1].normalized(),
-                             e});
-        }
-        add_shells(s, balls, id, id);
-        id += 5;
-    }
-    const std::uint32_t fruit = id - 1;  // 12 + 10
+    const std::uint32_t fruit = add_cucumbers_and_rows(s, 5, {3.5, 3.9}, 1, 5);  // 12 + 10
     SphereVoteParams params{.min_relative_size = 0.1};
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, params);
     EXPECT_EQ(r.cluster_count, fruit);
@@ -504,28 +513,7 @@ TEST(SphereVote, CoarseLongFruitAreMeasuredInSlabsOneSpacingThick) {
     // the joins, many, are made (coarse_joins). Touching spheres of the same radius in rows
     // keep their waists.
     Scene s;
-    const double e = 2;
-    const std::vector<Eigen::Vector3d> axes = {{0, 0, 1}, {1, 1, 0},   {0.3, -0.5, 0.8},
-                                               {1, 0, 0}, {0, 1, 0.3}, {-0.6, 0.2, 0.7}};
-    std::uint32_t id = 1;
-    for (int copy = 0; copy < 3; ++copy) {
-        for (const auto& axis : axes) {
-            add_spheroid(s, Eigen::Vector3d(-30 * e * id, 0, 0), e * std::cbrt(3.5), 3.5,
-                         axis + Eigen::Vector3d(0.1 * copy, 0, 0), id);
-            ++id;
-        }
-    }
-    for (int row = 0; row < 2; ++row) {
-        std::vector<Ball> balls;
-        for (int b = 0; b < 3; ++b) {
-            balls.push_back({Eigen::Vector3d(30 * e * row, 50 * e, 0) +
-                                 2.1 * e * b * axes[row + 1].normalized(),
-                             e});
-        }
-        add_shells(s, balls, id, id);
-        id += 3;
-    }
-    const std::uint32_t fruit = id - 1;  // 18 + 6
+    const std::uint32_t fruit = add_cucumbers_and_rows(s, 2, {3.5}, 3, 3);  // 18 + 6
     SphereVoteParams params{.min_relative_size = 0.1};
     const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, params);
     ASSERT_LT(r.fruit_radius, 5 * r.spacing);
