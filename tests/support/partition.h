@@ -7,6 +7,8 @@
 #include <set>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 namespace pc::test {
 
 /// Points whose label is not the majority label of their true object (truth 0, not fruit, is
@@ -38,6 +40,26 @@ inline long misassigned(const std::vector<std::uint32_t>& got,
         wrong += all - best;
     }
     return wrong;
+}
+
+/// misassigned() under one in `one_in` of the points (`truth.size() / one_in`, rounded down),
+/// as a gtest predicate whose failure says how many went wrong or that two fruit merged:
+/// `EXPECT_TRUE(few_misassigned(r.labels, s.truth, 100))`.
+inline ::testing::AssertionResult few_misassigned(const std::vector<std::uint32_t>& got,
+                                                  const std::vector<std::uint32_t>& truth,
+                                                  std::size_t one_in) {
+    const long wrong = misassigned(got, truth);
+    const auto most = static_cast<long>(truth.size() / one_in);
+    if (wrong < 0) {
+        return ::testing::AssertionFailure()
+               << "two fruit share a part, or a fruit's points went mostly to noise";
+    }
+    if (wrong >= most) {
+        return ::testing::AssertionFailure()
+               << wrong << " of " << truth.size() << " points misassigned (under " << most
+               << " allowed)";
+    }
+    return ::testing::AssertionSuccess();
 }
 
 /// Objects whose points' largest share (majority label) went to a label no other object's did,
