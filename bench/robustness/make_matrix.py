@@ -437,12 +437,19 @@ SHAPE_PARTS = [
 # light), each in a quarter of the part's scenes; leafy exports, silver bark, colour noise, dense
 # clouds and the spacing floor kept (the fruit then spans at most 8 spacings a radius).
 # 'held-out-51' (5341-5440, session 63, after held-out-50 was scored, before any method for it)
-# adds okra-like fruit (8 mm for a sphere of the same volume, aspect 3.6: long and thin, 4.6 mm
+# adds okra-like fruit (8 mm for a sphere of the same volume, aspect 3.6: long and thin, 10.4 mm
 # thick and 38 mm long, in bunches of 3-6 touching 0.5 mm apart, 120 on a plant of 1 m: the
 # long fruit so far were 12-45 mm and at most aspect 3.5) of turquoise (65,190,175: hue 173,
 # saturation 0.66, value 0.75: a blue-green beyond the teal and jade fruit, as porcelain berries
 # and unripe blue fruit are), each in a quarter of the part's scenes; leafy exports, silver bark,
 # colour noise, dense clouds and the spacing floor kept.
+# 'held-out-52' (5441-5540, session 64, after held-out-51 was scored, before any method for it)
+# adds papaya-like fruit (60 mm for a sphere of the same volume, aspect 1.8, in bunches of 3-8
+# touching 1 mm apart, 30 on a narrow plant of 0.4 x 0.4 x 1 m: large long fruit crowded in a
+# column, where the large fruit so far hung single or in loose pairs) of gold (220,170,30: hue
+# 44, saturation 0.86, value 0.86: a deep saturated yellow between the amber and yellow fruit:
+# ripe papayas, quinces and yellow plums in the sun), each in a quarter of the part's scenes;
+# leafy exports, silver bark, colour noise, dense clouds and the spacing floor kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -589,6 +596,10 @@ WOOD_PARTS = [
      {'okra': (0.008, '--species plum --fruit-radius 0.008 --bunch-min 3 --bunch-max 6 '
                       '--touch-gap 0.0005 --fruit-count 120 --canopy 0.6,0.6,0.8')},
      {'turquoise': (65, 190, 175)}, set(), WITH_SILVER),
+    ('held-out-52', 2079,
+     {'papaya': (0.060, '--species apple --fruit-radius 0.06 --bunch-min 3 --bunch-max 8 '
+                        '--touch-gap 0.001 --fruit-count 30 --canopy 0.4,0.4,1.0')},
+     {'gold': (220, 170, 30)}, set(), WITH_SILVER),
 ]
 
 
@@ -639,6 +650,7 @@ ASPECTS['rowan'] = 1.0
 ASPECTS['acerola'] = 0.85
 ASPECTS['elderberry'] = 1.0
 ASPECTS['okra'] = 3.6
+ASPECTS['papaya'] = 1.8
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
