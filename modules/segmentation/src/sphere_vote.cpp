@@ -1212,17 +1212,32 @@ struct Finished {
     double median_part = 0;   ///< SphereVoteResult::median_part
 };
 
+/// The fruit centres' labels as finish() reads them: 1..all are parts around a centre (a joined
+/// fruit's points carry the label of its first, strongest centre), and the first `measured`,
+/// the strongest centres, as many as the fruit the centres make (all - joins), set the median
+/// fruit; the weaker ones are judged as leftovers are. A join says a fruit gave two centres, and
+/// the weakest centres are most often more such (a long fruit's third or fourth along its axis,
+/// beyond the join's reach): until session 64 this was done by counting the labels above `all -
+/// joins` as leftovers outright, whose parts then also held no share of the points claimed;
+/// judged as fruit instead, banana-like scenes counted more (3798, 125 -> 186 of 120; 3794,
+/// 171 -> 259), dates and chilis one to eight more (docs/robustness-history.md, session 64).
+struct CentreLabels {
+    std::uint32_t all = 0;
+    std::uint32_t measured = 0;
+};
+
 /// Drops parts below min_size points or min_relative × the median fruit's points (to 0) and
-/// numbers the rest 1.. by decreasing size. Labels 1..fruit are fruit around a centre, higher
-/// ones the leftovers of clusters no centre claimed. When centres claimed most points, giant
-/// leftovers (kGiantPart) aside, the median is over their fruit and leftovers also go below a
-/// quarter of it (the pieces DBSCAN cut off a fruit, the crumbs scan lines and noisy colours
-/// leave beside the wood); otherwise (few or no centres) every part is measured against the
-/// median part.
+/// numbers the rest 1.. by decreasing size. Labels 1..centres.all are fruit around a centre,
+/// higher ones the leftovers of clusters no centre claimed. When centres claimed most points,
+/// giant leftovers (kGiantPart) aside, the median is over the fruit of the `measured` centres,
+/// and leftovers and the weaker centres' parts also go below a quarter of it (the pieces DBSCAN
+/// cut off a fruit, the crumbs scan lines and noisy colours leave beside the wood); otherwise
+/// (few or no centres) every part is measured against the median part.
 Finished finish(std::vector<std::uint32_t>& labels,
                 std::uint32_t min_size,
                 double min_relative,
-                std::uint32_t fruit) {
+                CentreLabels centres) {
+    const std::uint32_t fruit = centres.all, measured = centres.measured;
     std::uint32_t top = 0;
     for (auto l : labels) {
         top = std::max(top, l);
@@ -1232,7 +1247,7 @@ Finished finish(std::vector<std::uint32_t>& labels,
         size[l] += 1;
     }
     std::vector<double> fruit_sizes;
-    for (std::uint32_t l = 1; l <= std::min(top, fruit); ++l) {
+    for (std::uint32_t l = 1; l <= std::min(top, measured); ++l) {
         if (size[l] > 0) {
             fruit_sizes.push_back(size[l]);
         }
@@ -1248,19 +1263,20 @@ Finished finish(std::vector<std::uint32_t>& labels,
     const auto kept = [&](bool by_fruit) {
         std::vector<double> reference;
         for (std::uint32_t l = 1; l <= top; ++l) {
-            if (size[l] > 0 && (!by_fruit || l <= fruit)) {
+            if (size[l] > 0 && (!by_fruit || l <= measured)) {
                 reference.push_back(size[l]);
             }
         }
         const double typical = reference.empty() ? 0.0 : median(reference);
         std::vector<bool> keep(std::size_t{top} + 1, false);
         for (std::uint32_t l = 1; l <= top; ++l) {
-            const double cut = by_fruit && l > fruit ? std::max(min_relative, 0.25) : min_relative;
+            const double cut =
+                by_fruit && l > measured ? std::max(min_relative, 0.25) : min_relative;
             keep[l] = size[l] > 0 && size[l] >= min_size && size[l] >= cut * typical;
         }
         return keep;
     };
-    const bool relative = min_relative > 0 && fruit > 0;
+    const bool relative = min_relative > 0 && measured > 0;
     const std::vector<bool> keep = kept(relative && claimed >= 0.5 * (all - giants));
     std::vector<double> judged;
     const std::vector<bool> judged_keep = kept(relative && claimed >= 0.5 * all);
@@ -1373,9 +1389,10 @@ SphereVoteResult sphere_vote(const XyzView& points,
         }
     }
     // Numbers and filters the parts (the clusters, whole, when no fruit centre was found).
+    CentreLabels centres;
     const auto done = [&] {
         const Finished f =
-            finish(labels, params.min_cluster_size, params.min_relative_size, r.peaks);
+            finish(labels, params.min_cluster_size, params.min_relative_size, centres);
         r.cluster_count = f.count;
         r.median_part = f.median_part;
         r.labels = std::move(labels);
@@ -1732,7 +1749,8 @@ SphereVoteResult sphere_vote(const XyzView& points,
             const double fewer = parts(labels, members) - parts(trial, members);
             const std::uint32_t count =
                 finish(counted, params.min_cluster_size, params.min_relative_size,
-                       static_cast<std::uint32_t>(peaks.size()))
+                       {static_cast<std::uint32_t>(peaks.size()),
+                        static_cast<std::uint32_t>(peaks.size())})
                     .count;
             if (fewer > 0 && fewer >= params.coarse_joins * count) {
                 labels = std::move(trial);
@@ -1743,6 +1761,7 @@ SphereVoteResult sphere_vote(const XyzView& points,
     part_leftovers_on_lattice(points, members, labels, static_cast<std::uint32_t>(peaks.size()), R,
                               ss);
     r.peaks = static_cast<std::uint32_t>(peaks.size()) - joined;
+    centres = {static_cast<std::uint32_t>(peaks.size()), r.peaks};
     return done();
 }
 

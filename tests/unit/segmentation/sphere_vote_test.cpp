@@ -494,6 +494,23 @@ TEST(SphereVote, CucumberLongFruitAreJoinedEndToEndRowsOfSpheresAreNot) {
     EXPECT_GE(sphere_vote(XyzView(s.cloud), s.label, params).cluster_count, fruit + 6);
 }
 
+TEST(SphereVote, LongFruitCutIntoScanLinesCountWholeOnceTheirEndsAreJoined) {
+    // The cucumbers above, alone, with every slab 1.5 spacings wide a cluster of its own (scan
+    // lines that DBSCAN did not join): a middle's slices are leftovers of a few points each, the
+    // pieces dropped beside fruit whose centres claimed most points. A joined fruit's points
+    // carry its first centre's label, the other centres' labels stay fruit labels: once read as
+    // leftovers (the labels above the count of fruit), the centres held under half of the points
+    // and the slices were counted one by one (49).
+    Scene s;
+    const std::uint32_t fruit = add_cucumbers_and_rows(s, 5, {3.5, 3.9}, 1, 0);  // 12
+    for (std::size_t i = 0; i < s.cloud.size(); ++i) {
+        s.label[i] =
+            1000 * s.label[i] + static_cast<std::uint32_t>(std::floor(s.cloud[i].z / 1.5) + 500);
+    }
+    const SphereVoteResult r = sphere_vote(XyzView(s.cloud), s.label, {.min_relative_size = 0.1});
+    EXPECT_EQ(r.cluster_count, fruit);
+}
+
 TEST(SphereVote, CoarseLongFruitAreMeasuredInSlabsOneSpacingThick) {
     // Cucumber-like fruit 2 spacings thick (aspect 3.5): R spans under 5 spacings, where a
     // slab of ±0.1 R holds a point or two; slabs one spacing thick measure the profile, and
