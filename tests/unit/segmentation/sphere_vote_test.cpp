@@ -498,9 +498,10 @@ TEST(SphereVote, LongFruitCutIntoScanLinesCountWholeOnceTheirEndsAreJoined) {
     // The cucumbers above, alone, with every slab 1.5 spacings wide a cluster of its own (scan
     // lines that DBSCAN did not join): a middle's slices are leftovers of a few points each, the
     // pieces dropped beside fruit whose centres claimed most points. A joined fruit's points
-    // carry its first centre's label, the other centres' labels stay fruit labels: once read as
-    // leftovers (the labels above the count of fruit), the centres held under half of the points
-    // and the slices were counted one by one (49).
+    // carry its first centre's label, wherever that stands among the centres' labels; the share
+    // counts every centre's part. Read the old way (the labels above the count of fruit as
+    // leftovers) the centres held under half of the points, and the slices counted one by one
+    // (49).
     Scene s;
     const std::uint32_t fruit = add_cucumbers_and_rows(s, 5, {3.5, 3.9}, 1, 0);  // 12
     for (std::size_t i = 0; i < s.cloud.size(); ++i) {
