@@ -450,6 +450,14 @@ SHAPE_PARTS = [
 # 44, saturation 0.86, value 0.86: a deep saturated yellow between the amber and yellow fruit:
 # ripe papayas, quinces and yellow plums in the sun), each in a quarter of the part's scenes;
 # leafy exports, silver bark, colour noise, dense clouds and the spacing floor kept.
+# 'held-out-53' (5541-5640, session 65, after held-out-52 was scored, before any method for it)
+# adds melon-like fruit (90 mm for a sphere of the same volume, aspect 1.15, single or in pairs
+# touching 2 mm apart, 16 in a wide low layer of 2 x 2 x 0.7 m: large fruit lying apart, few
+# to a scene, so one fruit is 6 % of the count; the coconut-like, 100 mm, hung crowded in
+# bunches) of sand (210,185,140: hue 39, saturation 0.33,
+# value 0.82: a pale yellow-brown near the saturation line and the barks' hue, as netted melons,
+# quinces under russet and dry gourds are), each in a quarter of the part's scenes; leafy
+# exports, silver bark, colour noise, dense clouds and the spacing floor kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
@@ -600,6 +608,10 @@ WOOD_PARTS = [
      {'papaya': (0.060, '--species apple --fruit-radius 0.06 --bunch-min 3 --bunch-max 8 '
                         '--touch-gap 0.001 --fruit-count 30 --canopy 0.4,0.4,1.0')},
      {'gold': (220, 170, 30)}, set(), WITH_SILVER),
+    ('held-out-53', 2080,
+     {'melon': (0.090, '--species apple --fruit-radius 0.09 --bunch-min 1 --bunch-max 2 '
+                       '--touch-gap 0.002 --fruit-count 16 --canopy 1.0,1.0,0.35')},
+     {'sand': (210, 185, 140)}, set(), WITH_SILVER),
 ]
 
 
@@ -651,6 +663,7 @@ ASPECTS['acerola'] = 0.85
 ASPECTS['elderberry'] = 1.0
 ASPECTS['okra'] = 3.6
 ASPECTS['papaya'] = 1.8
+ASPECTS['melon'] = 1.15
 for part, seed, new_families, new_colours, left_out, *barks in SHAPE_PARTS + WOOD_PARTS:
     families.update(new_families)
     colours.update(new_colours)
