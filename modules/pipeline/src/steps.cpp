@@ -595,10 +595,9 @@ constexpr double kNoShell = 0.03;
 /// colour noise, and those whose pale points were counted; session 65) the pale run kept read
 /// 0.79-1.99 times in 122, and 13.8 in 5467 (kiwi-brown fruit beside bark of their colour: 1385
 /// counted of 200; tested on the pale groups only until then). A test of the path, not of one
-/// candidate: as a test in claims() of every candidate
-/// (session 43), the scattered group claimed nothing, its sibling then passed as the group
-/// whose other claims little, and 2958 went 120 -> 127 of 120; a scattered group's claim says
-/// the colours' split is no clean one.
+/// candidate: as a test in claims() of every candidate (session 43), the scattered group
+/// claimed nothing, its sibling then passed as the group whose other claims little, and 2958
+/// went 120 -> 127 of 120; a scattered group's claim says the colours' split is no clean one.
 constexpr double kScattered = 4;
 /// The green points are kept instead of the rule where their centres claim at least this much
 /// more of their points.
@@ -1213,7 +1212,7 @@ ChainResult by_shape(io::Blob in,
         // the pale points (2958, tan fruit under colour noise 25: a group of them 17 times
         // further apart than the rule's points was claimed 72 %, 1852 counted of 120; 5467,
         // kiwi-brown fruit the bark's colour under colour noise 25: all of them, 14 times, 57 %,
-        // 1385 of 200; cream fruit, 1.0-1.7).
+        // 1385 of 200; the pale fruit counted, 0.79-1.99: kScattered).
         const auto spacing = [](const ChainResult& r) {
             return step_value(r, "dbscan", "spacing").value_or(0);
         };
