@@ -454,10 +454,10 @@ SHAPE_PARTS = [
 # adds melon-like fruit (90 mm for a sphere of the same volume, aspect 1.15, single or in pairs
 # touching 2 mm apart, 16 in a wide low layer of 2 x 2 x 0.7 m: large fruit lying apart, few
 # to a scene, so one fruit is 6 % of the count; the coconut-like, 100 mm, hung crowded in
-# bunches) of sand (210,185,140: hue 39, saturation 0.33,
-# value 0.82: a pale yellow-brown near the saturation line and the barks' hue, as netted melons,
-# quinces under russet and dry gourds are), each in a quarter of the part's scenes; leafy
-# exports, silver bark, colour noise, dense clouds and the spacing floor kept.
+# bunches) of sand (210,185,140: hue 39, saturation 0.33, value 0.82: a pale yellow-brown near
+# the saturation line and the barks' hue, as netted melons, quinces under russet and dry gourds
+# are), each in a quarter of the part's scenes; leafy exports, silver bark, colour noise, dense
+# clouds and the spacing floor kept.
 # From held-out-29 on: the four barks and a silver one, pale as the pale fruit are.
 WITH_SILVER = {**BARK, 'silver': (175, 170, 160)}
 WOOD_PARTS = [
